@@ -1,0 +1,44 @@
+#pragma once
+// A small, strict command-line parser shared by the programs: unknown options, missing
+// values and malformed numbers are errors that name the option.
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace facet::cli {
+
+struct OptionSpec {
+    std::string name;         // "--out"
+    std::string value_name;   // "DIR"; empty for a flag
+    std::string help;
+};
+
+struct Parsed {
+    std::map<std::string, std::string> values;  // option -> value ("" for flags)
+    std::vector<std::string> positional;
+
+    bool has(const std::string& name) const { return values.count(name) != 0; }
+    std::string get(const std::string& name, const std::string& fallback = "") const;
+};
+
+class Parser {
+public:
+    Parser(std::string program, std::string usage, std::string description);
+    Parser& option(std::string name, std::string value_name, std::string help);
+    Parser& flag(std::string name, std::string help);
+
+    // Throws std::invalid_argument with a message naming the option.
+    Parsed parse(int argc, char** argv) const;
+    std::string help_text() const;
+
+private:
+    std::string program_, usage_, description_;
+    std::vector<OptionSpec> options_;
+};
+
+// Parses a whole string as a number; throws std::invalid_argument naming `what`.
+int parse_int(const std::string& text, const std::string& what, int min, int max);
+double parse_double(const std::string& text, const std::string& what);
+
+}  // namespace facet::cli

@@ -1,0 +1,92 @@
+#include "core/hash.h"
+#include "core/log.h"
+#include "core/result.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <mutex>
+#include <string>
+
+namespace facet {
+
+VulkanError::VulkanError(VkResult result, const std::string& what)
+    : std::runtime_error(what + ": " + vk_result_name(result)), result_(result) {}
+
+const char* vk_result_name(VkResult result) {
+    switch (result) {
+#define FACET_CASE(x) \
+    case x:           \
+        return #x;
+        FACET_CASE(VK_SUCCESS)
+        FACET_CASE(VK_NOT_READY)
+        FACET_CASE(VK_TIMEOUT)
+        FACET_CASE(VK_INCOMPLETE)
+        FACET_CASE(VK_ERROR_OUT_OF_HOST_MEMORY)
+        FACET_CASE(VK_ERROR_OUT_OF_DEVICE_MEMORY)
+        FACET_CASE(VK_ERROR_INITIALIZATION_FAILED)
+        FACET_CASE(VK_ERROR_DEVICE_LOST)
+        FACET_CASE(VK_ERROR_MEMORY_MAP_FAILED)
+        FACET_CASE(VK_ERROR_LAYER_NOT_PRESENT)
+        FACET_CASE(VK_ERROR_EXTENSION_NOT_PRESENT)
+        FACET_CASE(VK_ERROR_FEATURE_NOT_PRESENT)
+        FACET_CASE(VK_ERROR_INCOMPATIBLE_DRIVER)
+        FACET_CASE(VK_ERROR_TOO_MANY_OBJECTS)
+        FACET_CASE(VK_ERROR_FORMAT_NOT_SUPPORTED)
+        FACET_CASE(VK_ERROR_FRAGMENTED_POOL)
+        FACET_CASE(VK_ERROR_OUT_OF_POOL_MEMORY)
+        FACET_CASE(VK_ERROR_UNKNOWN)
+#undef FACET_CASE
+        default:
+            return "VkResult(unknown)";
+    }
+}
+
+void vk_check(VkResult result, const char* what) {
+    if (result != VK_SUCCESS) throw VulkanError(result, what);
+}
+
+namespace {
+std::mutex g_log_mutex;
+LogSink g_log_sink;
+
+bool debug_logging() {
+    const char* env = std::getenv("FACET_LOG");
+    return env && std::strcmp(env, "debug") == 0;
+}
+}  // namespace
+
+void set_log_sink(LogSink sink) {
+    std::lock_guard lock(g_log_mutex);
+    g_log_sink = std::move(sink);
+}
+
+void log(LogLevel level, std::string_view message) {
+    std::lock_guard lock(g_log_mutex);
+    if (g_log_sink) {
+        g_log_sink(level, message);
+        return;
+    }
+    static const bool verbose = debug_logging();
+    if (level < LogLevel::warning && !(verbose || level == LogLevel::info)) return;
+    static const char* names[] = {"debug", "info", "warning", "error"};
+    std::fprintf(stderr, "facet %s: %.*s\n", names[static_cast<int>(level)],
+                 static_cast<int>(message.size()), message.data());
+}
+
+Hash64& Hash64::add(const void* data, std::size_t size) {
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < size; ++i) {
+        state ^= bytes[i];
+        state *= 0x100000001b3ull;
+    }
+    return *this;
+}
+
+std::string Hash64::hex() const {
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(state));
+    return text;
+}
+
+}  // namespace facet

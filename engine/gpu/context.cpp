@@ -1,0 +1,400 @@
+#include "gpu/context.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <cstring>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/log.h"
+#include "gpu/memory.h"
+
+namespace facet {
+
+namespace {
+
+constexpr const char* validation_layer = "VK_LAYER_KHRONOS_validation";
+
+bool has_layer(const char* name) {
+    uint32_t count = 0;
+    vkEnumerateInstanceLayerProperties(&count, nullptr);
+    std::vector<VkLayerProperties> layers(count);
+    vkEnumerateInstanceLayerProperties(&count, layers.data());
+    return std::any_of(layers.begin(), layers.end(),
+                       [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+}
+
+bool has_instance_extension(const char* layer, const char* name) {
+    uint32_t count = 0;
+    vkEnumerateInstanceExtensionProperties(layer, &count, nullptr);
+    std::vector<VkExtensionProperties> extensions(count);
+    vkEnumerateInstanceExtensionProperties(layer, &count, extensions.data());
+    return std::any_of(extensions.begin(), extensions.end(), [&](const VkExtensionProperties& e) {
+        return std::strcmp(e.extensionName, name) == 0;
+    });
+}
+
+bool has_device_extension(VkPhysicalDevice device, const char* name) {
+    uint32_t count = 0;
+    vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr);
+    std::vector<VkExtensionProperties> extensions(count);
+    vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data());
+    return std::any_of(extensions.begin(), extensions.end(), [&](const VkExtensionProperties& e) {
+        return std::strcmp(e.extensionName, name) == 0;
+    });
+}
+
+std::string lower(std::string text) {
+    for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return text;
+}
+
+int type_rank(VkPhysicalDeviceType type) {
+    switch (type) {
+        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
+        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
+        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+        case VK_PHYSICAL_DEVICE_TYPE_CPU: return 3;
+        default: return 4;
+    }
+}
+
+std::string describe_devices(const std::vector<VkPhysicalDevice>& devices) {
+    std::string text;
+    for (size_t i = 0; i < devices.size(); ++i) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(devices[i], &p);
+        text += (i ? ", " : "") + std::to_string(i) + ": " + p.deviceName;
+    }
+    return text.empty() ? "none" : text;
+}
+
+// Which device: the selector (index or name substring), else discrete > integrated >
+// virtual > CPU (lavapipe). Only Vulkan 1.3 devices with push descriptors qualify.
+Result<VkPhysicalDevice> pick_device(VkInstance instance, const std::string& selector) {
+    uint32_t count = 0;
+    vkEnumeratePhysicalDevices(instance, &count, nullptr);
+    std::vector<VkPhysicalDevice> devices(count);
+    vkEnumeratePhysicalDevices(instance, &count, devices.data());
+    auto usable = [](VkPhysicalDevice d) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(d, &p);
+        return p.apiVersion >= VK_API_VERSION_1_3 &&
+               has_device_extension(d, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
+    };
+    if (!selector.empty()) {
+        VkPhysicalDevice chosen = VK_NULL_HANDLE;
+        bool is_index = std::all_of(selector.begin(), selector.end(),
+                                    [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+        if (is_index) {
+            size_t index = std::stoul(selector);
+            if (index < devices.size()) chosen = devices[index];
+        } else {
+            for (VkPhysicalDevice d : devices) {
+                VkPhysicalDeviceProperties p;
+                vkGetPhysicalDeviceProperties(d, &p);
+                if (lower(p.deviceName).find(lower(selector)) != std::string::npos) {
+                    chosen = d;
+                    break;
+                }
+            }
+        }
+        if (!chosen)
+            return Error{"no Vulkan device matches '" + selector + "' (devices: " +
+                         describe_devices(devices) + ")"};
+        if (!usable(chosen))
+            return Error{"device '" + selector +
+                         "' lacks Vulkan 1.3 or VK_KHR_push_descriptor"};
+        return chosen;
+    }
+    VkPhysicalDevice best = VK_NULL_HANDLE;
+    int best_rank = 1 << 30;
+    for (VkPhysicalDevice d : devices) {
+        if (!usable(d)) continue;
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(d, &p);
+        if (type_rank(p.deviceType) < best_rank) {
+            best = d;
+            best_rank = type_rank(p.deviceType);
+        }
+    }
+    if (!best)
+        return Error{"no Vulkan 1.3 device with VK_KHR_push_descriptor (devices: " +
+                         describe_devices(devices) + "); install mesa-vulkan-drivers for lavapipe",
+                     VK_ERROR_INCOMPATIBLE_DRIVER};
+    return best;
+}
+
+std::optional<uint32_t> find_queue_family(VkPhysicalDevice device) {
+    uint32_t count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(count);
+    vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
+    for (uint32_t i = 0; i < count; ++i) {
+        const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+        if ((families[i].queueFlags & need) == need) return i;
+    }
+    return std::nullopt;
+}
+
+}  // namespace
+
+bool ContextOptions::default_validation() {
+    if (const char* env = std::getenv("FACET_VALIDATION")) return std::strcmp(env, "0") != 0;
+#ifdef NDEBUG
+    return false;
+#else
+    return true;
+#endif
+}
+
+VKAPI_ATTR VkBool32 VKAPI_CALL Context::on_debug_message(
+    VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
+    const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+    auto* context = static_cast<Context*>(user);
+    const bool is_error = severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    context->validation_messages_.fetch_add(1);
+    log(is_error ? LogLevel::error : LogLevel::warning,
+        std::string("validation: ") + (data->pMessage ? data->pMessage : "(no message)"));
+    return VK_FALSE;
+}
+
+Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) {
+    std::unique_ptr<Context> context(new Context());
+    Context& c = *context;
+
+    std::vector<const char*> layers;
+    std::vector<const char*> extensions;
+    const bool validation = options.validation;
+    if (validation) {
+        if (!has_layer(validation_layer))
+            return Error{std::string(validation_layer) +
+                             " is not installed (Debian package vulkan-validationlayers)",
+                         VK_ERROR_LAYER_NOT_PRESENT};
+        layers.push_back(validation_layer);
+        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    } else if (has_instance_extension(nullptr, VK_EXT_DEBUG_UTILS_EXTENSION_NAME)) {
+        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);  // object names for tools
+    }
+    const bool validation_features =
+        validation && options.sync_validation &&
+        has_instance_extension(validation_layer, VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
+    if (validation_features) extensions.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
+
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.pApplicationName = options.app_name.c_str();
+    app.pEngineName = "facet";
+    app.apiVersion = VK_API_VERSION_1_3;
+
+    const VkValidationFeatureEnableEXT enables[] = {
+        VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+    VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+    features.enabledValidationFeatureCount = 1;
+    features.pEnabledValidationFeatures = enables;
+
+    VkDebugUtilsMessengerCreateInfoEXT messenger_info{
+        VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    messenger_info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                                     VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    messenger_info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                                 VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                                 VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    messenger_info.pfnUserCallback = &Context::on_debug_message;
+    messenger_info.pUserData = &c;
+    // Chained into instance creation too, so instance creation itself is validated.
+    if (validation_features) messenger_info.pNext = &features;
+
+    VkInstanceCreateInfo instance_info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    instance_info.pApplicationInfo = &app;
+    instance_info.enabledLayerCount = static_cast<uint32_t>(layers.size());
+    instance_info.ppEnabledLayerNames = layers.data();
+    instance_info.enabledExtensionCount = static_cast<uint32_t>(extensions.size());
+    instance_info.ppEnabledExtensionNames = extensions.data();
+    if (validation) instance_info.pNext = &messenger_info;
+    if (VkResult r = vkCreateInstance(&instance_info, nullptr, &c.instance_); r != VK_SUCCESS)
+        return Error{std::string("vkCreateInstance failed: ") + vk_result_name(r), r};
+
+    if (validation) {
+        messenger_info.pNext = nullptr;
+        auto create_messenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(c.instance_, "vkCreateDebugUtilsMessengerEXT"));
+        if (VkResult r = create_messenger(c.instance_, &messenger_info, nullptr, &c.messenger_);
+            r != VK_SUCCESS)
+            return Error{std::string("cannot create the debug messenger: ") + vk_result_name(r), r};
+    }
+
+    std::string selector = options.device;
+    if (selector.empty())
+        if (const char* env = std::getenv("FACET_DEVICE")) selector = env;
+    auto picked = pick_device(c.instance_, selector);
+    if (!picked) return picked.error();
+    c.physical_device_ = picked.value();
+    auto family = find_queue_family(c.physical_device_);
+    if (!family) return Error{"the device has no graphics+compute queue"};
+    c.queue_family_ = *family;
+
+    VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    features13.synchronization2 = VK_TRUE;
+    features13.dynamicRendering = VK_TRUE;
+    VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    features12.pNext = &features13;
+    features12.hostQueryReset = VK_TRUE;
+    VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    vkGetPhysicalDeviceFeatures(c.physical_device_, &supported.features);
+    VkPhysicalDeviceFeatures2 enabled{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    enabled.pNext = &features12;
+    enabled.features.shaderStorageImageWriteWithoutFormat =
+        supported.features.shaderStorageImageWriteWithoutFormat;
+    enabled.features.shaderStorageImageReadWithoutFormat =
+        supported.features.shaderStorageImageReadWithoutFormat;
+    enabled.features.samplerAnisotropy = supported.features.samplerAnisotropy;
+    enabled.features.shaderFloat64 = supported.features.shaderFloat64;
+
+    const float priority = 1.0f;
+    VkDeviceQueueCreateInfo queue_info{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    queue_info.queueFamilyIndex = c.queue_family_;
+    queue_info.queueCount = 1;
+    queue_info.pQueuePriorities = &priority;
+    const char* device_extensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    VkDeviceCreateInfo device_info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+    device_info.pNext = &enabled;
+    device_info.queueCreateInfoCount = 1;
+    device_info.pQueueCreateInfos = &queue_info;
+    device_info.enabledExtensionCount = 1;
+    device_info.ppEnabledExtensionNames = device_extensions;
+    if (VkResult r = vkCreateDevice(c.physical_device_, &device_info, nullptr, &c.device_);
+        r != VK_SUCCESS)
+        return Error{std::string("vkCreateDevice failed: ") + vk_result_name(r), r};
+    vkGetDeviceQueue(c.device_, c.queue_family_, 0, &c.queue_);
+    c.owns_device_ = true;
+    c.set_object_name_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
+        vkGetInstanceProcAddr(c.instance_, "vkSetDebugUtilsObjectNameEXT"));
+    if (std::find_if(extensions.begin(), extensions.end(), [](const char* e) {
+            return std::strcmp(e, VK_EXT_DEBUG_UTILS_EXTENSION_NAME) == 0;
+        }) == extensions.end())
+        c.set_object_name_ = nullptr;
+    try {
+        c.finish_setup();
+    } catch (const VulkanError& e) {
+        return Error{e.what(), e.result()};
+    }
+    return context;
+}
+
+Result<std::unique_ptr<Context>> Context::adopt(const HostVulkan& host, const ContextOptions&) {
+    if (!host.instance || !host.physical_device || !host.device || !host.queue)
+        return Error{"HostVulkan: instance, physical device, device and queue are all required"};
+    std::unique_ptr<Context> context(new Context());
+    Context& c = *context;
+    c.instance_ = host.instance;
+    c.physical_device_ = host.physical_device;
+    c.device_ = host.device;
+    c.queue_ = host.queue;
+    c.queue_family_ = host.queue_family;
+    c.owns_device_ = false;
+    if (host.debug_utils)
+        c.set_object_name_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
+            vkGetInstanceProcAddr(c.instance_, "vkSetDebugUtilsObjectNameEXT"));
+    try {
+        c.finish_setup();
+    } catch (const VulkanError& e) {
+        return Error{e.what(), e.result()};
+    }
+    if (!c.cmd_push_descriptor_set)
+        return Error{"the host's device does not enable VK_KHR_push_descriptor, which Facet needs"};
+    return context;
+}
+
+void Context::finish_setup() {
+    vkGetPhysicalDeviceProperties(physical_device_, &properties_);
+    cmd_push_descriptor_set = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
+        vkGetDeviceProcAddr(device_, "vkCmdPushDescriptorSetKHR"));
+    if (set_object_name_) {
+        cmd_begin_label = reinterpret_cast<PFN_vkCmdBeginDebugUtilsLabelEXT>(
+            vkGetInstanceProcAddr(instance_, "vkCmdBeginDebugUtilsLabelEXT"));
+        cmd_end_label = reinterpret_cast<PFN_vkCmdEndDebugUtilsLabelEXT>(
+            vkGetInstanceProcAddr(instance_, "vkCmdEndDebugUtilsLabelEXT"));
+    }
+    allocator_ = std::make_unique<Allocator>(physical_device_, device_);
+
+    VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT |
+                      VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+    pool_info.queueFamilyIndex = queue_family_;
+    vk_check(vkCreateCommandPool(device_, &pool_info, nullptr, &command_pool_), "vkCreateCommandPool");
+    set_name(command_pool_, VK_OBJECT_TYPE_COMMAND_POOL, "facet one-shot commands");
+    VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    vk_check(vkCreateFence(device_, &fence_info, nullptr, &fence_), "vkCreateFence");
+    set_name(fence_, VK_OBJECT_TYPE_FENCE, "facet submit fence");
+    if (owns_device_) {
+        set_name(device_, VK_OBJECT_TYPE_DEVICE, "facet device");
+        set_name(queue_, VK_OBJECT_TYPE_QUEUE, "facet queue");
+    }
+}
+
+Context::~Context() {
+    if (device_) vkDeviceWaitIdle(device_);
+    allocator_.reset();
+    if (fence_) vkDestroyFence(device_, fence_, nullptr);
+    if (command_pool_) vkDestroyCommandPool(device_, command_pool_, nullptr);
+    if (!owns_device_) return;
+    if (device_) vkDestroyDevice(device_, nullptr);
+    if (messenger_) {
+        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+        destroy(instance_, messenger_, nullptr);
+    }
+    if (instance_) vkDestroyInstance(instance_, nullptr);
+}
+
+void Context::set_name(VkObjectType type, uint64_t handle, const std::string& name) const {
+    if (!set_object_name_ || handle == 0) return;
+    VkDebugUtilsObjectNameInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT};
+    info.objectType = type;
+    info.objectHandle = handle;
+    info.pObjectName = name.c_str();
+    set_object_name_(device_, &info);
+}
+
+void Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record) {
+    std::lock_guard lock(submit_mutex_);
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    alloc.commandPool = command_pool_;
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    vk_check(vkAllocateCommandBuffers(device_, &alloc, &cmd), "vkAllocateCommandBuffers");
+    set_name(cmd, VK_OBJECT_TYPE_COMMAND_BUFFER, "facet one-shot");
+    struct Free {
+        VkDevice device;
+        VkCommandPool pool;
+        VkCommandBuffer cmd;
+        ~Free() { vkFreeCommandBuffers(device, pool, 1, &cmd); }
+    } free_later{device_, command_pool_, cmd};
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    vk_check(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer");
+    record(cmd);
+    vk_check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+    submit_locked(cmd);
+}
+
+void Context::submit_and_wait(VkCommandBuffer cmd) {
+    std::lock_guard lock(submit_mutex_);
+    submit_locked(cmd);
+}
+
+void Context::submit_locked(VkCommandBuffer cmd) {
+    VkCommandBufferSubmitInfo cmd_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+    cmd_info.commandBuffer = cmd;
+    VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+    submit.commandBufferInfoCount = 1;
+    submit.pCommandBufferInfos = &cmd_info;
+    vk_check(vkResetFences(device_, 1, &fence_), "vkResetFences");
+    vk_check(vkQueueSubmit2(queue_, 1, &submit, fence_), "vkQueueSubmit2");
+    vk_check(vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+}
+
+}  // namespace facet

@@ -1,0 +1,273 @@
+#include "gpu/pipeline.h"
+
+#include <utility>
+#include <vector>
+
+#include "core/result.h"
+#include "gpu/context.h"
+
+namespace facet {
+
+namespace {
+
+struct ShaderModule {
+    VkDevice device;
+    VkShaderModule module = VK_NULL_HANDLE;
+    ShaderModule(Context& context, std::span<const uint32_t> spirv, const std::string& name)
+        : device(context.device()) {
+        if (spirv.empty()) throw UsageError("pipeline '" + name + "': empty SPIR-V");
+        VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+        info.codeSize = spirv.size_bytes();
+        info.pCode = spirv.data();
+        vk_check(vkCreateShaderModule(device, &info, nullptr, &module),
+                 ("vkCreateShaderModule " + name).c_str());
+        context.set_name(module, VK_OBJECT_TYPE_SHADER_MODULE, name);
+    }
+    ~ShaderModule() { vkDestroyShaderModule(device, module, nullptr); }
+};
+
+}  // namespace
+
+// ---- PipelineLayout ----
+
+PipelineLayout::PipelineLayout(Context& context, std::span<const VkDescriptorType> bindings,
+                               VkShaderStageFlags stages, uint32_t push_constant_bytes,
+                               const std::string& name)
+    : context_(&context), stages_(stages) {
+    std::vector<VkDescriptorSetLayoutBinding> layout_bindings;
+    for (uint32_t i = 0; i < bindings.size(); ++i)
+        layout_bindings.push_back({i, bindings[i], 1, stages, nullptr});
+    VkDescriptorSetLayoutCreateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    set_info.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
+    set_info.bindingCount = static_cast<uint32_t>(layout_bindings.size());
+    set_info.pBindings = layout_bindings.data();
+    vk_check(vkCreateDescriptorSetLayout(context.device(), &set_info, nullptr, &set_layout_),
+             ("vkCreateDescriptorSetLayout " + name).c_str());
+    context.set_name(set_layout_, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, name);
+
+    VkPushConstantRange push{stages, 0, push_constant_bytes};
+    VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    info.setLayoutCount = 1;
+    info.pSetLayouts = &set_layout_;
+    info.pushConstantRangeCount = push_constant_bytes ? 1 : 0;
+    info.pPushConstantRanges = &push;
+    VkResult r = vkCreatePipelineLayout(context.device(), &info, nullptr, &layout_);
+    if (r != VK_SUCCESS) {
+        reset();
+        throw VulkanError(r, "vkCreatePipelineLayout " + name);
+    }
+    context.set_name(layout_, VK_OBJECT_TYPE_PIPELINE_LAYOUT, name);
+}
+
+PipelineLayout::~PipelineLayout() { reset(); }
+
+PipelineLayout::PipelineLayout(PipelineLayout&& other) noexcept
+    : context_(other.context_),
+      set_layout_(std::exchange(other.set_layout_, VK_NULL_HANDLE)),
+      layout_(std::exchange(other.layout_, VK_NULL_HANDLE)),
+      stages_(other.stages_) {}
+
+PipelineLayout& PipelineLayout::operator=(PipelineLayout&& other) noexcept {
+    if (this != &other) {
+        reset();
+        context_ = other.context_;
+        set_layout_ = std::exchange(other.set_layout_, VK_NULL_HANDLE);
+        layout_ = std::exchange(other.layout_, VK_NULL_HANDLE);
+        stages_ = other.stages_;
+    }
+    return *this;
+}
+
+void PipelineLayout::reset() {
+    if (layout_) vkDestroyPipelineLayout(context_->device(), layout_, nullptr);
+    if (set_layout_) vkDestroyDescriptorSetLayout(context_->device(), set_layout_, nullptr);
+    layout_ = VK_NULL_HANDLE;
+    set_layout_ = VK_NULL_HANDLE;
+}
+
+// ---- DescriptorWrite ----
+
+DescriptorWrite DescriptorWrite::storage_image(VkImageView view, VkImageLayout layout) {
+    DescriptorWrite w;
+    w.type = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    w.image = {VK_NULL_HANDLE, view, layout};
+    return w;
+}
+
+DescriptorWrite DescriptorWrite::sampled_image(VkImageView view, VkSampler sampler, VkImageLayout layout) {
+    DescriptorWrite w;
+    w.type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    w.image = {sampler, view, layout};
+    return w;
+}
+
+DescriptorWrite DescriptorWrite::storage_buffer(VkBuffer buffer, VkDeviceSize offset, VkDeviceSize range) {
+    DescriptorWrite w;
+    w.type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    w.buffer = {buffer, offset, range};
+    return w;
+}
+
+DescriptorWrite DescriptorWrite::uniform_buffer(VkBuffer buffer, VkDeviceSize offset, VkDeviceSize range) {
+    DescriptorWrite w;
+    w.type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    w.buffer = {buffer, offset, range};
+    return w;
+}
+
+// ---- Pipeline ----
+
+Pipeline::~Pipeline() { reset(); }
+
+Pipeline::Pipeline(Pipeline&& other) noexcept
+    : context_(other.context_),
+      layout_(std::move(other.layout_)),
+      pipeline_(std::exchange(other.pipeline_, VK_NULL_HANDLE)),
+      bind_point_(other.bind_point_) {}
+
+Pipeline& Pipeline::operator=(Pipeline&& other) noexcept {
+    if (this != &other) {
+        reset();
+        context_ = other.context_;
+        layout_ = std::move(other.layout_);
+        pipeline_ = std::exchange(other.pipeline_, VK_NULL_HANDLE);
+        bind_point_ = other.bind_point_;
+    }
+    return *this;
+}
+
+void Pipeline::reset() {
+    if (pipeline_) vkDestroyPipeline(context_->device(), pipeline_, nullptr);
+    pipeline_ = VK_NULL_HANDLE;
+}
+
+Pipeline Pipeline::compute(Context& context, std::span<const uint32_t> spirv,
+                           std::span<const VkDescriptorType> bindings, uint32_t push_constant_bytes,
+                           const std::string& name) {
+    Pipeline p;
+    p.context_ = &context;
+    p.bind_point_ = VK_PIPELINE_BIND_POINT_COMPUTE;
+    p.layout_ = PipelineLayout(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT, push_constant_bytes, name);
+    ShaderModule module(context, spirv, name);
+    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    info.stage.module = module.module;
+    info.stage.pName = "main";
+    info.layout = p.layout_.handle();
+    vk_check(vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline_),
+             ("vkCreateComputePipelines " + name).c_str());
+    context.set_name(p.pipeline_, VK_OBJECT_TYPE_PIPELINE, name);
+    return p;
+}
+
+Pipeline Pipeline::graphics(Context& context, const GraphicsDesc& desc, const std::string& name) {
+    Pipeline p;
+    p.context_ = &context;
+    p.bind_point_ = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    p.layout_ = PipelineLayout(context, desc.bindings,
+                               VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                               desc.push_constant_bytes, name);
+    ShaderModule vertex(context, desc.vertex_spirv, name + " vertex");
+    ShaderModule fragment(context, desc.fragment_spirv, name + " fragment");
+    VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
+                                                 {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
+    stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+    stages[0].module = vertex.module;
+    stages[0].pName = "main";
+    stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+    stages[1].module = fragment.module;
+    stages[1].pName = "main";
+
+    VkPipelineVertexInputStateCreateInfo vertex_input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    vertex_input.vertexBindingDescriptionCount = static_cast<uint32_t>(desc.vertex_bindings.size());
+    vertex_input.pVertexBindingDescriptions = desc.vertex_bindings.data();
+    vertex_input.vertexAttributeDescriptionCount = static_cast<uint32_t>(desc.vertex_attributes.size());
+    vertex_input.pVertexAttributeDescriptions = desc.vertex_attributes.data();
+    VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    assembly.topology = desc.topology;
+    VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    viewport.viewportCount = 1;
+    viewport.scissorCount = 1;
+    VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    raster.polygonMode = VK_POLYGON_MODE_FILL;
+    raster.cullMode = desc.cull;
+    raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    raster.lineWidth = 1.0f;
+    VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    multisample.rasterizationSamples = desc.samples;
+    VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    depth.depthTestEnable = desc.depth_test;
+    depth.depthWriteEnable = desc.depth_write;
+    depth.depthCompareOp = VK_COMPARE_OP_GREATER_OR_EQUAL;  // reversed Z
+    std::vector<VkPipelineColorBlendAttachmentState> blends(desc.color_formats.size());
+    for (auto& b : blends) {
+        b.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
+                           VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+        if (desc.alpha_blend) {
+            b.blendEnable = VK_TRUE;
+            b.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+            b.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+            b.colorBlendOp = VK_BLEND_OP_ADD;
+            b.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+            b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+            b.alphaBlendOp = VK_BLEND_OP_ADD;
+        }
+    }
+    VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    blend.attachmentCount = static_cast<uint32_t>(blends.size());
+    blend.pAttachments = blends.data();
+    const VkDynamicState dynamic_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+    dynamic.dynamicStateCount = 2;
+    dynamic.pDynamicStates = dynamic_states;
+    VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+    rendering.colorAttachmentCount = static_cast<uint32_t>(desc.color_formats.size());
+    rendering.pColorAttachmentFormats = desc.color_formats.data();
+    rendering.depthAttachmentFormat = desc.depth_format;
+
+    VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+    info.pNext = &rendering;
+    info.stageCount = 2;
+    info.pStages = stages;
+    info.pVertexInputState = &vertex_input;
+    info.pInputAssemblyState = &assembly;
+    info.pViewportState = &viewport;
+    info.pRasterizationState = &raster;
+    info.pMultisampleState = &multisample;
+    info.pDepthStencilState = &depth;
+    info.pColorBlendState = &blend;
+    info.pDynamicState = &dynamic;
+    info.layout = p.layout_.handle();
+    vk_check(vkCreateGraphicsPipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline_),
+             ("vkCreateGraphicsPipelines " + name).c_str());
+    context.set_name(p.pipeline_, VK_OBJECT_TYPE_PIPELINE, name);
+    return p;
+}
+
+void Pipeline::bind(VkCommandBuffer cmd) const { vkCmdBindPipeline(cmd, bind_point_, pipeline_); }
+
+void Pipeline::push_descriptors(VkCommandBuffer cmd, std::span<const DescriptorWrite> writes) const {
+    std::vector<VkWriteDescriptorSet> sets(writes.size());
+    for (uint32_t i = 0; i < writes.size(); ++i) {
+        VkWriteDescriptorSet& w = sets[i];
+        w = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        w.dstBinding = i;
+        w.descriptorCount = 1;
+        w.descriptorType = writes[i].type;
+        const bool is_buffer = writes[i].type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER ||
+                               writes[i].type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+        if (is_buffer)
+            w.pBufferInfo = &writes[i].buffer;
+        else
+            w.pImageInfo = &writes[i].image;
+    }
+    context_->cmd_push_descriptor_set(cmd, bind_point_, layout_.handle(), 0,
+                                      static_cast<uint32_t>(sets.size()), sets.data());
+}
+
+void Pipeline::push_constants(VkCommandBuffer cmd, const void* data, uint32_t bytes) const {
+    vkCmdPushConstants(cmd, layout_.handle(), layout_.stages(), 0, bytes, data);
+}
+
+}  // namespace facet

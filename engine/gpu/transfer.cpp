@@ -1,0 +1,162 @@
+#include "gpu/transfer.h"
+
+#include <cstring>
+
+#include "core/result.h"
+#include "gpu/context.h"
+
+namespace facet {
+
+namespace {
+
+VkImageMemoryBarrier2 layout_barrier(VkImage image, VkImageSubresourceRange range, VkImageLayout from,
+                                     VkImageLayout to) {
+    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    // Conservative on purpose: these helpers run outside any graph, between unknown work.
+    b.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    b.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+    b.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    b.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+    b.oldLayout = from;
+    b.newLayout = to;
+    b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = image;
+    b.subresourceRange = range;
+    return b;
+}
+
+void barrier(VkCommandBuffer cmd, const VkImageMemoryBarrier2& b) {
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.imageMemoryBarrierCount = 1;
+    dep.pImageMemoryBarriers = &b;
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+VkDeviceSize subresource_bytes(const ImageDesc& desc, uint32_t mip) {
+    return VkDeviceSize(desc.mip_width(mip)) * desc.mip_height(mip) * bytes_per_texel(desc.format);
+}
+
+void check_subresource(const Image& image, uint32_t mip, uint32_t layer) {
+    if (mip >= image.desc().mip_levels || layer >= image.desc().array_layers)
+        throw UsageError("mip " + std::to_string(mip) + " / layer " + std::to_string(layer) +
+                         " is outside the image");
+}
+
+VkBufferImageCopy copy_region(const Image& image, uint32_t mip, uint32_t layer) {
+    VkBufferImageCopy region{};
+    region.imageSubresource = {aspect_of(image.desc().format), mip, layer, 1};
+    region.imageExtent = {image.desc().mip_width(mip), image.desc().mip_height(mip), 1};
+    return region;
+}
+
+}  // namespace
+
+void upload_image(Context& context, Image& image, uint32_t mip, uint32_t layer,
+                  std::span<const std::byte> data, VkImageLayout current_layout, VkImageLayout final_layout) {
+    check_subresource(image, mip, layer);
+    const VkDeviceSize bytes = subresource_bytes(image.desc(), mip);
+    if (data.size() != bytes)
+        throw UsageError("upload_image: " + std::to_string(data.size()) + " bytes given, the subresource holds " +
+                         std::to_string(bytes));
+    Buffer staging(context, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::upload, "upload staging");
+    std::memcpy(staging.mapped(), data.data(), bytes);
+    staging.flush();
+    VkImageSubresourceRange range{aspect_of(image.desc().format), mip, 1, layer, 1};
+    context.submit_and_wait([&](VkCommandBuffer cmd) {
+        barrier(cmd, layout_barrier(image.handle(), range, current_layout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL));
+        VkBufferImageCopy region = copy_region(image, mip, layer);
+        vkCmdCopyBufferToImage(cmd, staging.handle(), image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                               &region);
+        barrier(cmd, layout_barrier(image.handle(), range, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, final_layout));
+    });
+}
+
+std::vector<std::byte> read_image(Context& context, const Image& image, uint32_t mip, uint32_t layer,
+                                  VkImageLayout current_layout) {
+    check_subresource(image, mip, layer);
+    const VkDeviceSize bytes = subresource_bytes(image.desc(), mip);
+    Buffer staging(context, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::readback, "readback staging");
+    VkImageSubresourceRange range{aspect_of(image.desc().format), mip, 1, layer, 1};
+    context.submit_and_wait([&](VkCommandBuffer cmd) {
+        barrier(cmd, layout_barrier(image.handle(), range, current_layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL));
+        VkBufferImageCopy region = copy_region(image, mip, layer);
+        vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(), 1,
+                               &region);
+        barrier(cmd, layout_barrier(image.handle(), range, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, current_layout));
+        VkMemoryBarrier2 to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        to_host.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+        to_host.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        to_host.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+        to_host.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.memoryBarrierCount = 1;
+        dep.pMemoryBarriers = &to_host;
+        vkCmdPipelineBarrier2(cmd, &dep);
+    });
+    staging.invalidate();
+    std::vector<std::byte> out(bytes);
+    std::memcpy(out.data(), staging.mapped(), bytes);
+    return out;
+}
+
+void upload_buffer(Context& context, Buffer& buffer, std::span<const std::byte> data) {
+    if (data.size() > buffer.size()) throw UsageError("upload_buffer: data larger than the buffer");
+    if (buffer.mapped()) {
+        std::memcpy(buffer.mapped(), data.data(), data.size());
+        buffer.flush();
+        return;
+    }
+    Buffer staging(context, data.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::upload, "upload staging");
+    std::memcpy(staging.mapped(), data.data(), data.size());
+    staging.flush();
+    context.submit_and_wait([&](VkCommandBuffer cmd) {
+        VkBufferCopy region{0, 0, data.size()};
+        vkCmdCopyBuffer(cmd, staging.handle(), buffer.handle(), 1, &region);
+        VkMemoryBarrier2 done{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        done.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+        done.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        done.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+        done.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.memoryBarrierCount = 1;
+        dep.pMemoryBarriers = &done;
+        vkCmdPipelineBarrier2(cmd, &dep);
+    });
+}
+
+std::vector<std::byte> read_buffer(Context& context, const Buffer& buffer) {
+    std::vector<std::byte> out(buffer.size());
+    if (buffer.mapped()) {
+        buffer.invalidate();
+        std::memcpy(out.data(), buffer.mapped(), out.size());
+        return out;
+    }
+    Buffer staging(context, buffer.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::readback,
+                   "readback staging");
+    context.submit_and_wait([&](VkCommandBuffer cmd) {
+        VkMemoryBarrier2 before{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        before.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+        before.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+        before.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+        before.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.memoryBarrierCount = 1;
+        dep.pMemoryBarriers = &before;
+        vkCmdPipelineBarrier2(cmd, &dep);
+        VkBufferCopy region{0, 0, buffer.size()};
+        vkCmdCopyBuffer(cmd, buffer.handle(), staging.handle(), 1, &region);
+        VkMemoryBarrier2 to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        to_host.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+        to_host.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        to_host.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+        to_host.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+        dep.pMemoryBarriers = &to_host;
+        vkCmdPipelineBarrier2(cmd, &dep);
+    });
+    staging.invalidate();
+    std::memcpy(out.data(), staging.mapped(), out.size());
+    return out;
+}
+
+}  // namespace facet

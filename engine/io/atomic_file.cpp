@@ -1,0 +1,64 @@
+#include "io/atomic_file.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <system_error>
+
+namespace facet {
+
+namespace fs = std::filesystem;
+
+Status write_atomically(const std::string& path, const std::function<Status(const std::string&)>& write) {
+    fs::path target(path);
+    fs::path temp = target.parent_path() /
+                    ("." + target.stem().string() + ".partial-" + std::to_string(::getpid()) +
+                     target.extension().string());
+    auto discard = [&] {
+        std::error_code ignored;
+        fs::remove(temp, ignored);
+    };
+    Status status = Ok{};
+    try {
+        status = write(temp.string());
+    } catch (...) {
+        discard();
+        throw;
+    }
+    if (!status) {
+        discard();
+        return status;
+    }
+    std::error_code ec;
+    fs::rename(temp, target, ec);
+    if (ec) {
+        discard();
+        return Error{path + ": cannot move the finished file into place: " + ec.message()};
+    }
+    return Ok{};
+}
+
+Status write_text_file(const std::string& path, const std::string& text) {
+    return write_atomically(path, [&](const std::string& temp) -> Status {
+        std::ofstream out(temp, std::ios::binary);
+        if (!out) return Error{path + ": cannot open for writing: " + std::error_code(errno, std::generic_category()).message()};
+        out << text;
+        out.close();
+        if (!out) return Error{path + ": write failed (disk full?)"};
+        return Ok{};
+    });
+}
+
+Status ensure_directory(const std::string& dir) {
+    std::error_code ec;
+    if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+        return Error{dir + ": exists and is not a directory"};
+    fs::create_directories(dir, ec);
+    if (ec) return Error{dir + ": cannot create the directory: " + ec.message()};
+    if (::access(dir.c_str(), W_OK) != 0) return Error{dir + ": the directory is not writable"};
+    return Ok{};
+}
+
+}  // namespace facet

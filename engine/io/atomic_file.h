@@ -1,0 +1,23 @@
+#pragma once
+// Outputs appear whole or not at all: write to a temporary name in the same directory,
+// then rename (atomic on POSIX file systems). A failed or interrupted write leaves no
+// partial file under the final name.
+#include <functional>
+#include <string>
+
+#include "core/result.h"
+
+namespace facet {
+
+// Calls write(temp_path); renames temp_path to `path` when it succeeds, removes it when
+// it fails or throws. The temporary keeps the extension (writers choose format by it).
+Status write_atomically(const std::string& path, const std::function<Status(const std::string&)>& write);
+
+// Writes text (JSON, logs) atomically.
+Status write_text_file(const std::string& path, const std::string& text);
+
+// Creates `dir` and its parents; an error names the directory and the reason
+// (exists as a file, permission denied, ...).
+Status ensure_directory(const std::string& dir);
+
+}  // namespace facet
