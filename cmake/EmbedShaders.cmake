@@ -1,3 +1,16 @@
-# Placeholder: replaced by the shader module's embedding (engine/shader).
+# Embeds every shader source under `dir` into `target` at build time, keyed by its path
+# relative to `dir`, so programs compile GLSL at run time without finding files on disk.
 function(facet_embed_shaders target dir)
+  file(GLOB_RECURSE _shaders CONFIGURE_DEPENDS
+    ${dir}/*.glsl ${dir}/*.comp ${dir}/*.vert ${dir}/*.frag)
+  list(SORT _shaders)
+  set(_out ${CMAKE_CURRENT_BINARY_DIR}/facet_embedded_shaders.cpp)
+  add_custom_command(
+    OUTPUT ${_out}
+    COMMAND ${CMAKE_COMMAND} -DSHADER_DIR=${dir} -DOUTPUT=${_out}
+            -P ${PROJECT_SOURCE_DIR}/cmake/embed_shaders_generate.cmake
+    DEPENDS ${_shaders} ${PROJECT_SOURCE_DIR}/cmake/embed_shaders_generate.cmake
+    COMMENT "Embedding shaders from ${dir}"
+    VERBATIM)
+  target_sources(${target} PRIVATE ${_out})
 endfunction()

@@ -1,0 +1,141 @@
+#include "shader/compiler.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "core/hash.h"
+#include "core/log.h"
+#include "shader/glslang_frontend.h"
+
+namespace facet {
+
+namespace {
+
+// On-disk entry: a small header so a truncated or foreign file is recognised and
+// recompiled instead of reaching the driver.
+struct DiskHeader {
+    char magic[4] = {'F', 'S', 'P', 'V'};
+    uint32_t word_count = 0;
+    uint64_t key = 0;
+    uint64_t words_hash = 0;
+};
+
+uint64_t hash_words(const std::vector<uint32_t>& words) {
+    return Hash64().add(words.data(), words.size() * sizeof(uint32_t)).value();
+}
+
+std::string disk_path(const std::string& dir, uint64_t key) {
+    Hash64 h;
+    h.state = key;
+    return dir + "/" + h.hex() + ".spv";
+}
+
+std::optional<std::vector<uint32_t>> read_disk(const std::string& path, uint64_t key) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return std::nullopt;
+    DiskHeader header;
+    std::vector<uint32_t> words;
+    if (in.read(reinterpret_cast<char*>(&header), sizeof header) && std::string(header.magic, 4) == "FSPV" &&
+        header.key == key && header.word_count > 0 && header.word_count < (64u << 20)) {
+        words.resize(header.word_count);
+        if (in.read(reinterpret_cast<char*>(words.data()), words.size() * 4) && in.peek() == EOF &&
+            hash_words(words) == header.words_hash && words[0] == 0x07230203u)
+            return words;
+    }
+    log(LogLevel::warning, path + ": shader cache entry is damaged; compiling again");
+    return std::nullopt;
+}
+
+void write_disk(const std::string& dir, uint64_t key, const std::vector<uint32_t>& words) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    const std::string path = disk_path(dir, key);
+    const std::string temp = path + ".partial-" + std::to_string(::getpid());
+    DiskHeader header;
+    header.word_count = static_cast<uint32_t>(words.size());
+    header.key = key;
+    header.words_hash = hash_words(words);
+    {
+        std::ofstream out(temp, std::ios::binary);
+        out.write(reinterpret_cast<const char*>(&header), sizeof header);
+        out.write(reinterpret_cast<const char*>(words.data()), words.size() * 4);
+        if (!out) {
+            std::filesystem::remove(temp, ec);
+            log(LogLevel::warning, dir + ": cannot write to the shader cache");
+            return;
+        }
+    }
+    std::filesystem::rename(temp, path, ec);
+    if (ec) std::filesystem::remove(temp, ec);
+}
+
+}  // namespace
+
+const char* stage_name(ShaderStage stage) {
+    switch (stage) {
+        case ShaderStage::vertex: return "vertex";
+        case ShaderStage::fragment: return "fragment";
+        case ShaderStage::compute: return "compute";
+    }
+    return "?";
+}
+
+ShaderCompiler::ShaderCompiler(ShaderCompilerOptions options)
+    : options_(std::move(options)), library_(options_.source_dir) {}
+
+Result<Spirv> ShaderCompiler::compile(ShaderStage stage, std::string_view name,
+                                      std::span<const ShaderDefine> defines) {
+    auto text = library_.load(name);
+    if (!text)
+        return Error{std::string(name) + ": no such shader (looked in " +
+                     (library_.source_dir().empty() ? "" : library_.source_dir() + " and ") +
+                     "the embedded shaders/)"};
+    return compile_source(stage, name, *text, defines);
+}
+
+Result<Spirv> ShaderCompiler::compile_source(ShaderStage stage, std::string_view name, std::string_view text,
+                                             std::span<const ShaderDefine> defines) {
+    glslang_frontend::Input input{stage, std::string(name), std::string(text), {}, options_.debug_info};
+    for (const ShaderDefine& d : defines) input.preamble += "#define " + d.name + " " + d.value + "\n";
+
+    auto preprocessed = glslang_frontend::preprocess(library_, input);
+    if (!preprocessed) return preprocessed.error();
+    const uint64_t key = Hash64()
+                             .add(*preprocessed)
+                             .add(input.preamble)
+                             .add(stage_name(stage))
+                             .add(options_.debug_info ? "debug" : "release")
+                             .value();
+    {
+        std::lock_guard lock(mutex_);
+        if (auto it = memory_cache_.find(key); it != memory_cache_.end()) {
+            ++stats_.memory_hits;
+            return Spirv{it->second, key};
+        }
+    }
+    if (!options_.disk_cache_dir.empty()) {
+        if (auto words = read_disk(disk_path(options_.disk_cache_dir, key), key)) {
+            std::lock_guard lock(mutex_);
+            ++stats_.disk_hits;
+            memory_cache_[key] = *words;
+            return Spirv{std::move(*words), key};
+        }
+    }
+    auto words = glslang_frontend::compile(library_, input);
+    if (!words) return words.error();
+    if (!options_.disk_cache_dir.empty()) write_disk(options_.disk_cache_dir, key, *words);
+    std::lock_guard lock(mutex_);
+    ++stats_.compiles;
+    memory_cache_[key] = *words;
+    return Spirv{std::move(words).value(), key};
+}
+
+ShaderCompiler::Stats ShaderCompiler::stats() const {
+    std::lock_guard lock(mutex_);
+    return stats_;
+}
+
+}  // namespace facet

@@ -1,0 +1,166 @@
+#include "shader/glslang_frontend.h"
+
+#include <glslang/Public/ResourceLimits.h>
+#include <glslang/Public/ShaderLang.h>
+#include <glslang/SPIRV/GlslangToSpv.h>
+
+#include <memory>
+#include <mutex>
+#include <regex>
+#include <sstream>
+
+#include "core/log.h"
+
+namespace facet::glslang_frontend {
+
+namespace {
+
+void initialize_once() {
+    static std::once_flag once;
+    std::call_once(once, [] { glslang::InitializeProcess(); });
+}
+
+EShLanguage to_glslang(ShaderStage stage) {
+    switch (stage) {
+        case ShaderStage::vertex: return EShLangVertex;
+        case ShaderStage::fragment: return EShLangFragment;
+        case ShaderStage::compute: return EShLangCompute;
+    }
+    return EShLangCompute;
+}
+
+std::string folder_of(const std::string& name) {
+    auto slash = name.rfind('/');
+    return slash == std::string::npos ? "" : name.substr(0, slash + 1);
+}
+
+// Resolves "x.glsl" relative to the including file, then from the shaders/ root.
+class LibraryIncluder : public glslang::TShader::Includer {
+public:
+    explicit LibraryIncluder(const ShaderLibrary& library) : library_(library) {}
+
+    IncludeResult* includeLocal(const char* header, const char* includer, size_t) override {
+        std::string relative = normalize_shader_path(folder_of(includer) + header);
+        if (auto r = find(relative)) return r;
+        return find(normalize_shader_path(header));
+    }
+    IncludeResult* includeSystem(const char* header, const char*, size_t) override {
+        return find(normalize_shader_path(header));
+    }
+    void releaseInclude(IncludeResult* result) override {
+        if (!result) return;
+        delete static_cast<std::string*>(result->userData);
+        delete result;
+    }
+
+private:
+    IncludeResult* find(const std::string& name) {
+        if (name.empty()) return nullptr;
+        auto text = library_.load(name);
+        if (!text) return nullptr;
+        auto* owned = new std::string(std::move(*text));
+        return new IncludeResult(name, owned->data(), owned->size(), owned);
+    }
+    const ShaderLibrary& library_;
+};
+
+constexpr const char* include_extension = "#extension GL_GOOGLE_include_directive : require\n";
+
+std::unique_ptr<glslang::TShader> make_shader(const Input& input, const char* const* text, const int* length,
+                                              const char* const* name, std::string& preamble) {
+    auto shader = std::make_unique<glslang::TShader>(to_glslang(input.stage));
+    shader->setStringsWithLengthsAndNames(text, length, name, 1);
+    preamble = std::string(include_extension) + input.preamble;
+    shader->setPreamble(preamble.c_str());
+    shader->setEnvInput(glslang::EShSourceGlsl, to_glslang(input.stage), glslang::EShClientVulkan, 100);
+    shader->setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_3);
+    shader->setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_6);
+    return shader;
+}
+
+EShMessages messages(const Input& input) {
+    int m = EShMsgSpvRules | EShMsgVulkanRules;
+    if (input.debug_info) m |= EShMsgDebugInfo;
+    return static_cast<EShMessages>(m);
+}
+
+std::optional<std::string> line_of(const std::string& text, int line) {
+    std::istringstream in(text);
+    std::string current;
+    for (int i = 1; std::getline(in, current); ++i)
+        if (i == line) return current;
+    return std::nullopt;
+}
+
+}  // namespace
+
+std::string format_log(std::string_view log, const ShaderLibrary& library, const std::string& main_name,
+                       const std::string& main_text) {
+    static const std::regex located(R"(^(ERROR|WARNING): (.+?):(\d+): (.*)$)");
+    std::istringstream in{std::string(log)};
+    std::string line, out;
+    while (std::getline(in, line)) {
+        std::smatch m;
+        if (std::regex_match(line, m, located)) {
+            const std::string file = m[2].str() == "0" ? main_name : m[2].str();
+            const int number = std::stoi(m[3].str());
+            const char* kind = m[1].str() == "ERROR" ? "error" : "warning";
+            out += file + ":" + std::to_string(number) + ": " + kind + ": " + m[4].str() + "\n";
+            auto text = file == main_name ? std::optional<std::string>(main_text) : library.load(file);
+            if (text)
+                if (auto source = line_of(*text, number)) out += "    " + *source + "\n";
+        } else if (line.find("compilation errors") != std::string::npos || line.empty()) {
+            continue;  // glslang's summary line adds nothing to the located messages
+        } else {
+            out += line + "\n";
+        }
+    }
+    return out;
+}
+
+Result<std::string> preprocess(const ShaderLibrary& library, const Input& input) {
+    initialize_once();
+    const char* text = input.text.c_str();
+    const int length = static_cast<int>(input.text.size());
+    const char* name = input.name.c_str();
+    std::string preamble;
+    auto shader = make_shader(input, &text, &length, &name, preamble);
+    LibraryIncluder includer(library);
+    std::string output;
+    if (!shader->preprocess(GetDefaultResources(), 460, ENoProfile, false, false, messages(input), &output,
+                            includer))
+        return Error{format_log(shader->getInfoLog(), library, input.name, input.text)};
+    return output;
+}
+
+Result<std::vector<uint32_t>> compile(const ShaderLibrary& library, const Input& input) {
+    initialize_once();
+    const char* text = input.text.c_str();
+    const int length = static_cast<int>(input.text.size());
+    const char* name = input.name.c_str();
+    std::string preamble;
+    auto shader = make_shader(input, &text, &length, &name, preamble);
+    LibraryIncluder includer(library);
+    if (!shader->parse(GetDefaultResources(), 460, false, messages(input), includer))
+        return Error{format_log(shader->getInfoLog(), library, input.name, input.text)};
+    glslang::TProgram program;
+    program.addShader(shader.get());
+    if (!program.link(messages(input)))
+        return Error{input.name + ": link error: " + program.getInfoLog()};
+    if (std::string warnings = format_log(shader->getInfoLog(), library, input.name, input.text);
+        !warnings.empty())
+        log(LogLevel::warning, warnings);
+
+    glslang::SpvOptions options;
+    options.generateDebugInfo = input.debug_info;
+    options.disableOptimizer = true;
+    spv::SpvBuildLogger logger;
+    std::vector<uint32_t> words;
+    glslang::GlslangToSpv(*program.getIntermediate(to_glslang(input.stage)), words, &logger, &options);
+    if (std::string messages = logger.getAllMessages(); !messages.empty())
+        log(LogLevel::debug, input.name + ": " + messages);
+    if (words.empty()) return Error{input.name + ": SPIR-V generation produced no code"};
+    return words;
+}
+
+}  // namespace facet::glslang_frontend

@@ -1,0 +1,31 @@
+#pragma once
+// The glslang calls behind ShaderCompiler: preprocessing (for the cache key) and
+// compilation to SPIR-V, with glslang's log turned into `file:line: error:` messages.
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/result.h"
+#include "shader/compiler.h"
+#include "shader/shader_library.h"
+
+namespace facet::glslang_frontend {
+
+struct Input {
+    ShaderStage stage;
+    std::string name;
+    std::string text;
+    std::string preamble;  // #defines
+    bool debug_info = false;
+};
+
+// The source with every #include expanded and macros applied.
+Result<std::string> preprocess(const ShaderLibrary& library, const Input& input);
+Result<std::vector<uint32_t>> compile(const ShaderLibrary& library, const Input& input);
+
+// glslang's info log as `file:line: error: message` lines, each followed by the source
+// line it points at (found through the library, or `main_text` for the main file).
+std::string format_log(std::string_view log, const ShaderLibrary& library, const std::string& main_name,
+                       const std::string& main_text);
+
+}  // namespace facet::glslang_frontend

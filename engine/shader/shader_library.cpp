@@ -1,0 +1,54 @@
+#include "shader/shader_library.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include "shader/embedded_shaders.h"
+
+namespace facet {
+
+ShaderLibrary::ShaderLibrary(std::string source_dir) : source_dir_(std::move(source_dir)) {
+    if (source_dir_.empty())
+        if (const char* env = std::getenv("FACET_SHADER_DIR")) source_dir_ = env;
+}
+
+std::optional<std::string> ShaderLibrary::load(std::string_view name) const {
+    const std::string path = normalize_shader_path(name);
+    if (path.empty()) return std::nullopt;
+    if (!source_dir_.empty()) {
+        std::ifstream in(source_dir_ + "/" + path, std::ios::binary);
+        if (in) {
+            std::ostringstream text;
+            text << in.rdbuf();
+            return text.str();
+        }
+    }
+    for (std::size_t i = 0; i < embedded::shader_count; ++i)
+        if (path == embedded::shaders[i].name)
+            return std::string(embedded::shaders[i].text, embedded::shaders[i].size);
+    return std::nullopt;
+}
+
+std::string normalize_shader_path(std::string_view path) {
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    while (start <= path.size()) {
+        std::size_t end = path.find('/', start);
+        if (end == std::string_view::npos) end = path.size();
+        std::string part(path.substr(start, end - start));
+        if (part == "..") {
+            if (parts.empty()) return {};
+            parts.pop_back();
+        } else if (!part.empty() && part != ".") {
+            parts.push_back(part);
+        }
+        start = end + 1;
+    }
+    std::string out;
+    for (const std::string& p : parts) out += (out.empty() ? "" : "/") + p;
+    return out;
+}
+
+}  // namespace facet

@@ -1,0 +1,37 @@
+# Shared by scripts/main.sh and scripts/test.sh: Debian packages and the build.
+set -euo pipefail
+
+FACET_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+FACET_BUILD_DIR="${FACET_BUILD_DIR:-$FACET_ROOT/build/release}"
+FACET_JOBS="${FACET_JOBS:-$(nproc)}"
+
+# Everything Facet builds and runs with (design.md); the tests add their own few.
+FACET_PACKAGES=(
+  build-essential cmake ninja-build pkg-config
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
+  glslang-dev libglfw3-dev libglm-dev libtinygltf-dev libopenimageio-dev libimgui-dev
+)
+FACET_TEST_PACKAGES=(libgtest-dev libgmock-dev libbenchmark-dev xvfb)
+
+# Installs the packages that are missing; apt-get update runs only when needed.
+install_packages() {
+  local missing=()
+  for p in "$@"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  if [ ${#missing[@]} -eq 0 ]; then
+    echo "facet: Debian packages present"
+    return
+  fi
+  echo "facet: installing ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+build_facet() {
+  cmake -S "$FACET_ROOT" -B "$FACET_BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@"
+  cmake --build "$FACET_BUILD_DIR" -j "$FACET_JOBS"
+}

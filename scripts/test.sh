@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# The tests: install packages, build, run every ctest suite on lavapipe with the
+# Khronos validation layer (any validation message fails a test).
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+
+install_packages "${FACET_PACKAGES[@]}" "${FACET_TEST_PACKAGES[@]}"
+build_facet -DFACET_BUILD_TESTS=ON
+cd "$FACET_BUILD_DIR"
+ctest --output-on-failure --timeout 600 -j "$FACET_JOBS" "$@"

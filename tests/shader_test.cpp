@@ -1,0 +1,176 @@
+// Run-time GLSL compilation: includes, defines, error messages, caches. No GPU needed.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
+
+#include "shader/compiler.h"
+
+namespace facet {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* fill_source = R"(#version 460
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0, rgba32f) uniform writeonly image2D out_image;
+void main() {
+#ifdef SCALE
+    imageStore(out_image, ivec2(gl_GlobalInvocationID.xy), vec4(SCALE));
+#else
+    imageStore(out_image, ivec2(gl_GlobalInvocationID.xy), vec4(1.0));
+#endif
+}
+)";
+
+struct TempDir {
+    fs::path path;
+    TempDir() {
+        path = fs::temp_directory_path() / ("facet_shader_test_" + std::to_string(::getpid()) + "_" +
+                                            std::to_string(counter()++));
+        fs::create_directories(path);
+    }
+    ~TempDir() { fs::remove_all(path); }
+    static int& counter() {
+        static int c = 0;
+        return c;
+    }
+    void write(const std::string& name, const std::string& text) const {
+        fs::create_directories((path / name).parent_path());
+        std::ofstream(path / name) << text;
+    }
+};
+
+TEST(ShaderCompiler, CompilesComputeSourceToSpirv) {
+    ShaderCompiler compiler;
+    auto spirv = compiler.compile_source(ShaderStage::compute, "fill.comp", fill_source);
+    ASSERT_TRUE(spirv) << spirv.error().message;
+    ASSERT_GT(spirv->words.size(), 5u);
+    EXPECT_EQ(spirv->words[0], 0x07230203u);   // SPIR-V magic
+    EXPECT_EQ(spirv->words[1], 0x00010600u);   // SPIR-V 1.6 (Vulkan 1.3)
+}
+
+TEST(ShaderCompiler, CompilesEveryEmbeddedEntryShader) {
+    ShaderCompiler compiler;
+    for (const char* name : {"ibl/procedural_sky.comp", "render/tonemap_preview.comp", "test/brdf_eval.comp"}) {
+        auto spirv = compiler.compile(ShaderStage::compute, name);
+        EXPECT_TRUE(spirv) << name << ": " << (spirv ? "" : spirv.error().message);
+    }
+}
+
+TEST(ShaderCompiler, DefinesChangeTheOutputAndTheKey) {
+    ShaderCompiler compiler;
+    auto plain = compiler.compile_source(ShaderStage::compute, "fill.comp", fill_source);
+    ShaderDefine scale{"SCALE", "2.5"};
+    auto scaled = compiler.compile_source(ShaderStage::compute, "fill.comp", fill_source, std::span(&scale, 1));
+    ASSERT_TRUE(plain && scaled);
+    EXPECT_NE(plain->key, scaled->key);
+    EXPECT_NE(plain->words, scaled->words);
+}
+
+TEST(ShaderCompiler, ErrorInMainFileNamesFileLineAndSource) {
+    ShaderCompiler compiler;
+    const std::string source = "#version 460\nlayout(local_size_x = 1) in;\nvoid main() {\n    float x = ;\n}\n";
+    auto spirv = compiler.compile_source(ShaderStage::compute, "broken.comp", source);
+    ASSERT_FALSE(spirv);
+    const std::string& message = spirv.error().message;
+    EXPECT_NE(message.find("broken.comp:4: error:"), std::string::npos) << message;
+    EXPECT_NE(message.find("    float x = ;"), std::string::npos) << message;
+}
+
+TEST(ShaderCompiler, ErrorInIncludedFileNamesThatFile) {
+    TempDir dir;
+    dir.write("lib/helpers.glsl", "float helper() {\n    return 1.0\n}\n");
+    dir.write("main.comp",
+              "#version 460\n#include \"lib/helpers.glsl\"\nlayout(local_size_x = 1) in;\nvoid main() {}\n");
+    ShaderCompilerOptions options;
+    options.source_dir = dir.path.string();
+    ShaderCompiler compiler(options);
+    auto spirv = compiler.compile(ShaderStage::compute, "main.comp");
+    ASSERT_FALSE(spirv);
+    const std::string& message = spirv.error().message;
+    EXPECT_NE(message.find("lib/helpers.glsl:3: error:"), std::string::npos) << message;
+}
+
+TEST(ShaderCompiler, MissingIncludeNamesTheIncludingFileAndLine) {
+    ShaderCompiler compiler;
+    const std::string source = "#version 460\n\n#include \"no_such_file.glsl\"\nlayout(local_size_x = 1) in;\nvoid main() {}\n";
+    auto spirv = compiler.compile_source(ShaderStage::compute, "includer.comp", source);
+    ASSERT_FALSE(spirv);
+    const std::string& message = spirv.error().message;
+    EXPECT_NE(message.find("includer.comp:3:"), std::string::npos) << message;
+    EXPECT_NE(message.find("no_such_file.glsl"), std::string::npos) << message;
+}
+
+TEST(ShaderCompiler, UnknownShaderNameIsAnError) {
+    ShaderCompiler compiler;
+    auto spirv = compiler.compile(ShaderStage::compute, "no/such/shader.comp");
+    ASSERT_FALSE(spirv);
+    EXPECT_NE(spirv.error().message.find("no/such/shader.comp"), std::string::npos);
+}
+
+TEST(ShaderCompiler, MemoryCacheHitsAndEditedIncludeRecompiles) {
+    TempDir dir;
+    dir.write("value.glsl", "const float VALUE = 1.0;\n");
+    const std::string main =
+        "#version 460\n#include \"value.glsl\"\nlayout(local_size_x = 1) in;\n"
+        "layout(std430, binding = 0) buffer B { float v[]; };\nvoid main() { v[0] = VALUE; }\n";
+    ShaderCompilerOptions options;
+    options.source_dir = dir.path.string();
+    ShaderCompiler compiler(options);
+    auto first = compiler.compile_source(ShaderStage::compute, "main.comp", main);
+    auto second = compiler.compile_source(ShaderStage::compute, "main.comp", main);
+    ASSERT_TRUE(first && second);
+    EXPECT_EQ(compiler.stats().compiles, 1u);
+    EXPECT_EQ(compiler.stats().memory_hits, 1u);
+    EXPECT_EQ(first->words, second->words);
+
+    dir.write("value.glsl", "const float VALUE = 2.0;\n");
+    auto edited = compiler.compile_source(ShaderStage::compute, "main.comp", main);
+    ASSERT_TRUE(edited);
+    EXPECT_NE(edited->key, first->key);
+    EXPECT_EQ(compiler.stats().compiles, 2u);
+}
+
+TEST(ShaderCompiler, DiskCacheIsReusedAndDamagedEntriesRecompiled) {
+    TempDir cache;
+    ShaderCompilerOptions options;
+    options.disk_cache_dir = cache.path.string();
+    Spirv original;
+    {
+        ShaderCompiler compiler(options);
+        auto spirv = compiler.compile_source(ShaderStage::compute, "fill.comp", fill_source);
+        ASSERT_TRUE(spirv);
+        original = *spirv;
+        EXPECT_EQ(compiler.stats().compiles, 1u);
+    }
+    {
+        ShaderCompiler compiler(options);
+        auto spirv = compiler.compile_source(ShaderStage::compute, "fill.comp", fill_source);
+        ASSERT_TRUE(spirv);
+        EXPECT_EQ(compiler.stats().disk_hits, 1u);
+        EXPECT_EQ(compiler.stats().compiles, 0u);
+        EXPECT_EQ(spirv->words, original.words);
+    }
+    // Truncate every entry: the next compiler must notice and compile again.
+    for (const auto& entry : fs::directory_iterator(cache.path)) fs::resize_file(entry.path(), 20);
+    {
+        ShaderCompiler compiler(options);
+        auto spirv = compiler.compile_source(ShaderStage::compute, "fill.comp", fill_source);
+        ASSERT_TRUE(spirv);
+        EXPECT_EQ(compiler.stats().disk_hits, 0u);
+        EXPECT_EQ(compiler.stats().compiles, 1u);
+        EXPECT_EQ(spirv->words, original.words);
+    }
+}
+
+TEST(ShaderLibraryPaths, NormalizesAndRejectsEscapes) {
+    EXPECT_EQ(normalize_shader_path("a/b/../c.glsl"), "a/c.glsl");
+    EXPECT_EQ(normalize_shader_path("./brdf.glsl"), "brdf.glsl");
+    EXPECT_EQ(normalize_shader_path("../etc/passwd"), "");
+}
+
+}  // namespace
+}  // namespace facet
