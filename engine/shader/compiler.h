@@ -1,5 +1,6 @@
 #pragma once
-// GLSL -> SPIR-V at run time with the glslang library (Vulkan 1.3, SPIR-V 1.6).
+// GLSL -> SPIR-V at run time with the glslang library (Vulkan 1.3 client, SPIR-V 1.5 so
+// that host devices without maintenance4 accept it).
 // #include "x.glsl" resolves against the including file's folder, then shaders/;
 // errors read `file:line: error: message` followed by the offending source line.
 // Results are cached in memory (and optionally on disk) by a hash of the preprocessed

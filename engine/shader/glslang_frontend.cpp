@@ -74,7 +74,7 @@ std::unique_ptr<glslang::TShader> make_shader(const Input& input, const char* co
     shader->setPreamble(preamble.c_str());
     shader->setEnvInput(glslang::EShSourceGlsl, to_glslang(input.stage), glslang::EShClientVulkan, 100);
     shader->setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_3);
-    shader->setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_6);
+    shader->setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_5);
     return shader;
 }
 

@@ -1,0 +1,151 @@
+// The shared BRDF include (shaders/brdf.glsl), evaluated on the GPU and checked against
+// formulas written here independently in double precision, plus the GGX normalisation
+// integral (the projected NDF integrates to 1) computed from the GPU's own values.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "gpu/pipeline.h"
+#include "gpu/resources.h"
+#include "gpu/transfer.h"
+#include "shader/compiler.h"
+#include "support/gpu_test.h"
+
+namespace facet {
+namespace {
+
+struct BrdfInput {
+    float NdotV, NdotL, NdotH, VdotH;
+    float roughness, f0, pad0, pad1;
+};
+struct BrdfOutput {
+    float D, F, F_rough, G_direct;
+    float G_ibl, V_correlated, k_direct, k_ibl;
+};
+
+constexpr double pi = 3.14159265358979323846;
+
+// Reference formulas (Walter et al. 2007; Schlick 1994; Karis 2013; Heitz 2014).
+double ggx(double n_h, double r) {
+    const double a = r * r, a2 = a * a;
+    const double t = n_h * n_h * (a2 - 1.0) + 1.0;
+    return a2 / (pi * t * t);
+}
+double schlick(double cos_theta, double f0) { return f0 + (1.0 - f0) * std::pow(1.0 - cos_theta, 5.0); }
+double schlick_roughness(double cos_theta, double f0, double r) {
+    return f0 + (std::max(1.0 - r, f0) - f0) * std::pow(1.0 - cos_theta, 5.0);
+}
+double g1(double n_x, double k) { return n_x / (n_x * (1.0 - k) + k); }
+double smith_correlated_v(double n_v, double n_l, double a) {
+    const double a2 = a * a;
+    return 0.5 / (n_l * std::sqrt(n_v * n_v * (1.0 - a2) + a2) + n_v * std::sqrt(n_l * n_l * (1.0 - a2) + a2));
+}
+
+std::vector<BrdfOutput> evaluate(Context& context, const std::vector<BrdfInput>& inputs) {
+    ShaderCompiler compiler;
+    auto spirv = compiler.compile(ShaderStage::compute, "test/brdf_eval.comp");
+    if (!spirv) {
+        ADD_FAILURE() << spirv.error().message;
+        return {};
+    }
+    const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+    Pipeline pipeline = Pipeline::compute(context, spirv->words, bindings, 0, "brdf eval");
+    Buffer in(context, inputs.size() * sizeof(BrdfInput), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::upload,
+              "brdf inputs");
+    Buffer out(context, inputs.size() * sizeof(BrdfOutput), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+               MemoryUsage::readback, "brdf outputs");
+    std::memcpy(in.mapped(), inputs.data(), inputs.size() * sizeof(BrdfInput));
+    in.flush();
+    context.submit_and_wait([&](VkCommandBuffer cmd) {
+        pipeline.bind(cmd);
+        const DescriptorWrite writes[] = {DescriptorWrite::storage_buffer(in.handle()),
+                                          DescriptorWrite::storage_buffer(out.handle())};
+        pipeline.push_descriptors(cmd, writes);
+        vkCmdDispatch(cmd, group_count(static_cast<uint32_t>(inputs.size()), 64), 1, 1);
+        VkMemoryBarrier2 to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        to_host.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+        to_host.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+        to_host.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+        to_host.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.memoryBarrierCount = 1;
+        dep.pMemoryBarriers = &to_host;
+        vkCmdPipelineBarrier2(cmd, &dep);
+    });
+    out.invalidate();
+    std::vector<BrdfOutput> result(inputs.size());
+    std::memcpy(result.data(), out.mapped(), result.size() * sizeof(BrdfOutput));
+    return result;
+}
+
+void expect_close(double gpu, double ref, double rel, const std::string& what) {
+    EXPECT_NEAR(gpu, ref, rel * std::max(1.0, std::abs(ref))) << what;
+}
+
+class BrdfTest : public test::GpuTest {};
+
+TEST_F(BrdfTest, TermsMatchIndependentFormulas) {
+    std::vector<BrdfInput> inputs;
+    for (float r : {0.05f, 0.2f, 0.5f, 0.8f, 1.0f})
+        for (float c : {0.05f, 0.3f, 0.7f, 1.0f})
+            inputs.push_back({c, 1.1f - c, 0.2f + 0.8f * c, 0.5f * c + 0.25f, r, 0.04f + 0.9f * (1.0f - c), 0, 0});
+    auto out = evaluate(ctx(), inputs);
+    ASSERT_EQ(out.size(), inputs.size());
+    for (size_t i = 0; i < inputs.size(); ++i) {
+        const BrdfInput& x = inputs[i];
+        const std::string at = "case " + std::to_string(i) + " roughness " + std::to_string(x.roughness);
+        const double r = x.roughness;
+        expect_close(out[i].D, ggx(x.NdotH, r), 2e-5, "D_GGX " + at);
+        expect_close(out[i].F, schlick(x.VdotH, x.f0), 2e-6, "F_Schlick " + at);
+        expect_close(out[i].F_rough, schlick_roughness(x.NdotV, x.f0, r), 2e-6, "F_SchlickRoughness " + at);
+        const double kd = (r + 1) * (r + 1) / 8, ki = r * r / 2;
+        expect_close(out[i].k_direct, kd, 1e-6, "k_direct " + at);
+        expect_close(out[i].k_ibl, ki, 1e-6, "k_ibl " + at);
+        expect_close(out[i].G_direct, g1(x.NdotV, kd) * g1(x.NdotL, kd), 2e-6, "G_Smith direct " + at);
+        expect_close(out[i].G_ibl, g1(x.NdotV, ki) * g1(x.NdotL, ki), 2e-6, "G_Smith IBL " + at);
+        expect_close(out[i].V_correlated, smith_correlated_v(x.NdotV, x.NdotL, r * r), 2e-5,
+                     "V_SmithGGXCorrelated " + at);
+    }
+}
+
+// The GGX NDF is normalised: the integral of D(h) (n.h) over the hemisphere is 1,
+// i.e. 2 pi * integral_0^1 D(mu) mu dmu. Integrated from the shader's own values.
+TEST_F(BrdfTest, GgxProjectedAreaIntegratesToOne) {
+    const int n = 8192;
+    for (float r : {0.3f, 0.6f, 1.0f}) {
+        std::vector<BrdfInput> inputs;
+        for (int i = 0; i < n; ++i) {
+            const float mu = (i + 0.5f) / n;  // midpoint rule in mu = cos(theta_h)
+            inputs.push_back({0.5f, 0.5f, mu, 0.5f, r, 0.04f, 0, 0});
+        }
+        auto out = evaluate(ctx(), inputs);
+        ASSERT_EQ(out.size(), inputs.size());
+        double integral = 0;
+        for (int i = 0; i < n; ++i) integral += double(out[i].D) * inputs[i].NdotH / n;
+        integral *= 2 * pi;
+        EXPECT_NEAR(integral, 1.0, 1e-3) << "roughness " << r;
+    }
+}
+
+// Where the formulas divide by zero (roughness 0, n.v = 0): finite, non-negative values.
+TEST_F(BrdfTest, FiniteAtRoughnessZeroAndGrazingAngles) {
+    std::vector<BrdfInput> inputs = {
+        {1.0f, 1.0f, 1.0f, 1.0f, 0.0f, 0.04f, 0, 0}, {0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.04f, 0, 0},
+        {0.0f, 1.0f, 0.0f, 0.0f, 1.0f, 1.0f, 0, 0},  {1e-6f, 1e-6f, 1.0f, 1e-6f, 0.0f, 0.5f, 0, 0},
+    };
+    auto out = evaluate(ctx(), inputs);
+    ASSERT_EQ(out.size(), inputs.size());
+    for (size_t i = 0; i < out.size(); ++i) {
+        const float values[] = {out[i].D, out[i].F, out[i].F_rough, out[i].G_direct, out[i].G_ibl, out[i].V_correlated};
+        for (float v : values) {
+            EXPECT_TRUE(std::isfinite(v)) << "case " << i;
+            EXPECT_GE(v, 0.0f) << "case " << i;
+        }
+    }
+    EXPECT_EQ(out[1].G_ibl, 0.0f) << "no light at a grazing view";
+}
+
+}  // namespace
+}  // namespace facet
