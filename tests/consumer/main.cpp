@@ -1,0 +1,56 @@
+// Uses the installed headers and library: a headless context, a run-time compiled
+// compute shader, one dispatch, and the result checked on the CPU.
+#include <facet/gpu/context.h>
+#include <facet/gpu/pipeline.h>
+#include <facet/gpu/resources.h>
+#include <facet/shader/compiler.h>
+
+#include <cstdio>
+#include <cstring>
+
+int main() {
+    auto context = facet::Context::create();
+    if (!context) {
+        std::fprintf(stderr, "consumer: %s\n", context.error().message.c_str());
+        return 1;
+    }
+    facet::ShaderCompiler compiler;
+    auto spirv = compiler.compile_source(facet::ShaderStage::compute, "squares.comp", R"(#version 460
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) buffer Values { uint values[]; };
+void main() { uint i = gl_GlobalInvocationID.x; values[i] = i * i; }
+)");
+    if (!spirv) {
+        std::fprintf(stderr, "consumer: %s\n", spirv.error().message.c_str());
+        return 1;
+    }
+    facet::Context& ctx = *context.value();
+    const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+    facet::Pipeline pipeline = facet::Pipeline::compute(ctx, spirv->words, bindings, 0, "squares");
+    const uint32_t count = 256;
+    facet::Buffer buffer(ctx, count * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, facet::MemoryUsage::readback, "squares");
+    ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+        pipeline.bind(cmd);
+        const facet::DescriptorWrite writes[] = {facet::DescriptorWrite::storage_buffer(buffer.handle())};
+        pipeline.push_descriptors(cmd, writes);
+        vkCmdDispatch(cmd, count / 64, 1, 1);
+        VkMemoryBarrier2 to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        to_host.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+        to_host.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+        to_host.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+        to_host.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.memoryBarrierCount = 1;
+        dep.pMemoryBarriers = &to_host;
+        vkCmdPipelineBarrier2(cmd, &dep);
+    });
+    buffer.invalidate();
+    const auto* values = static_cast<const uint32_t*>(buffer.mapped());
+    for (uint32_t i = 0; i < count; ++i)
+        if (values[i] != i * i) {
+            std::fprintf(stderr, "consumer: value %u is %u, expected %u\n", i, values[i], i * i);
+            return 1;
+        }
+    std::printf("consumer: ok on %s\n", ctx.device_name().c_str());
+    return 0;
+}
