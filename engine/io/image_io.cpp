@@ -60,6 +60,8 @@ Status write_ldr_image(const std::string& path, uint32_t width, uint32_t height,
         return Error{path + ": pixel buffer does not match " + std::to_string(width) + "x" + std::to_string(height)};
     return write_atomically(path, [&](const std::string& temp) -> Status {
         OIIO::ImageSpec spec(int(width), int(height), 4, OIIO::TypeDesc::UINT8);
+        // Our texels are straight (unassociated) alpha; stop OIIO from dividing by alpha.
+        spec.attribute("oiio:UnassociatedAlpha", 1);
         return write_with_oiio(path, temp, spec, rgba.data());
     });
 }
