@@ -1,0 +1,253 @@
+#include "graph/graph_run.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "core/result.h"
+#include "gpu/context.h"
+
+namespace facet {
+
+namespace {
+
+VkImageSubresourceRange to_vk(const ImageDesc& desc, ImageRange r) {
+    const uint32_t mips = r.mip_count == all_remaining ? desc.mip_levels - r.base_mip : r.mip_count;
+    const uint32_t layers = r.layer_count == all_remaining ? desc.array_layers - r.base_layer : r.layer_count;
+    return {aspect_of(desc.format), r.base_mip, mips, r.base_layer, layers};
+}
+
+bool same_range(const VkImageSubresourceRange& a, const VkImageSubresourceRange& b) {
+    return a.aspectMask == b.aspectMask && a.baseMipLevel == b.baseMipLevel && a.levelCount == b.levelCount &&
+           a.baseArrayLayer == b.baseArrayLayer && a.layerCount == b.layerCount;
+}
+
+}  // namespace
+
+// ---- PassContext ----
+
+VkImage PassContext::image(ImageHandle image) const { return run_.image(image); }
+const ImageDesc& PassContext::desc(ImageHandle image) const { return run_.image_desc(image.index); }
+VkImageView PassContext::view(ImageHandle image, ImageRange range, VkImageViewType type) const {
+    return run_.view(image.index, range, type);
+}
+VkBuffer PassContext::buffer(BufferHandle buffer) const { return run_.buffer(buffer); }
+VkDeviceSize PassContext::size(BufferHandle buffer) const {
+    return run_.compiled_.graph->resources().at(buffer.index).buffer_desc.size;
+}
+
+// ---- GraphRun ----
+
+GraphRun::GraphRun(Context& context, const CompiledGraph& compiled) : context_(context), compiled_(compiled) {
+    allocate();
+}
+
+GraphRun::~GraphRun() {
+    VkDevice device = context_.device();
+    for (auto& [key, view] : views_) vkDestroyImageView(device, view, nullptr);
+    if (queries_) vkDestroyQueryPool(device, queries_, nullptr);
+    if (pool_) vkDestroyCommandPool(device, pool_, nullptr);
+}
+
+void GraphRun::allocate() {
+    images_.resize(compiled_.physical_images.size());
+    for (size_t p = 0; p < images_.size(); ++p) {
+        const PhysicalResource& phys = compiled_.physical_images[p];
+        if (!phys.imported) images_[p] = Image(context_, phys.image_desc, phys.image_usage, phys.name);
+    }
+    buffers_.resize(compiled_.physical_buffers.size());
+    for (size_t p = 0; p < buffers_.size(); ++p) {
+        const PhysicalResource& phys = compiled_.physical_buffers[p];
+        if (!phys.imported)
+            buffers_[p] = Buffer(context_, phys.buffer_desc.size, phys.buffer_usage, MemoryUsage::gpu_only, phys.name);
+    }
+    uint32_t family_count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(context_.physical_device(), &family_count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(family_count);
+    vkGetPhysicalDeviceQueueFamilyProperties(context_.physical_device(), &family_count, families.data());
+    const bool has_timestamps = families.at(context_.queue_family()).timestampValidBits > 0;
+    if (!compiled_.passes.empty() && has_timestamps) {
+        VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+        info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        info.queryCount = static_cast<uint32_t>(compiled_.passes.size() * 2);
+        vk_check(vkCreateQueryPool(context_.device(), &info, nullptr, &queries_), "vkCreateQueryPool");
+        context_.set_name(queries_, VK_OBJECT_TYPE_QUERY_POOL, "render graph timestamps");
+    }
+}
+
+VkImage GraphRun::physical_image(uint32_t p) const {
+    const PhysicalResource& phys = compiled_.physical_images[p];
+    if (phys.imported) return compiled_.graph->resources()[phys.imported_resource].imported_image.image;
+    return images_[p].handle();
+}
+
+VkBuffer GraphRun::physical_buffer(uint32_t p) const {
+    const PhysicalResource& phys = compiled_.physical_buffers[p];
+    if (phys.imported) return compiled_.graph->resources()[phys.imported_resource].imported_buffer.buffer;
+    return buffers_[p].handle();
+}
+
+VkImage GraphRun::image(ImageHandle image) const {
+    const uint32_t p = compiled_.physical_of.at(image.index);
+    if (p == invalid_index)
+        throw UsageError("image '" + compiled_.graph->resources()[image.index].name + "' is not used by the graph");
+    return physical_image(p);
+}
+
+VkBuffer GraphRun::buffer(BufferHandle buffer) const {
+    const uint32_t p = compiled_.physical_of.at(buffer.index);
+    if (p == invalid_index)
+        throw UsageError("buffer '" + compiled_.graph->resources()[buffer.index].name + "' is not used by the graph");
+    return physical_buffer(p);
+}
+
+Image* GraphRun::transient_image(ImageHandle image) {
+    const uint32_t p = compiled_.physical_of.at(image.index);
+    if (p == invalid_index || compiled_.physical_images[p].imported) return nullptr;
+    return &images_[p];
+}
+
+Buffer* GraphRun::transient_buffer(BufferHandle buffer) {
+    const uint32_t p = compiled_.physical_of.at(buffer.index);
+    if (p == invalid_index || compiled_.physical_buffers[p].imported) return nullptr;
+    return &buffers_[p];
+}
+
+const ImageDesc& GraphRun::image_desc(uint32_t resource) const {
+    return compiled_.graph->resources().at(resource).image_desc;
+}
+
+VkImageView GraphRun::view(uint32_t resource, ImageRange range, VkImageViewType type) {
+    const uint32_t p = compiled_.physical_of.at(resource);
+    const ImageDesc& desc = image_desc(resource);
+    const VkImageSubresourceRange r = to_vk(desc, range);
+    if (type == VK_IMAGE_VIEW_TYPE_MAX_ENUM) {
+        if (desc.cube && r.layerCount % 6 == 0)
+            type = r.layerCount == 6 ? VK_IMAGE_VIEW_TYPE_CUBE : VK_IMAGE_VIEW_TYPE_CUBE_ARRAY;
+        else
+            type = r.layerCount == 1 ? VK_IMAGE_VIEW_TYPE_2D : VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+    }
+    for (const auto& [key, v] : views_)
+        if (key.physical == p && key.type == type && same_range(key.range, r)) return v;
+    VkImageViewCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    info.image = physical_image(p);
+    info.viewType = type;
+    info.format = desc.format;
+    info.subresourceRange = r;
+    VkImageView view = VK_NULL_HANDLE;
+    vk_check(vkCreateImageView(context_.device(), &info, nullptr, &view), "vkCreateImageView (render graph)");
+    context_.set_name(view, VK_OBJECT_TYPE_IMAGE_VIEW,
+                      compiled_.graph->resources()[resource].name + " mips " + std::to_string(r.baseMipLevel) + "+" +
+                          std::to_string(r.levelCount) + " layers " + std::to_string(r.baseArrayLayer) + "+" +
+                          std::to_string(r.layerCount));
+    views_.push_back({{p, r, type}, view});
+    return view;
+}
+
+void GraphRun::record_barriers(VkCommandBuffer cmd, const BarrierBatch& batch) const {
+    if (batch.empty()) return;
+    std::vector<VkImageMemoryBarrier2> images;
+    for (const ImageBarrier& b : batch.images) {
+        VkImageMemoryBarrier2 v{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+        v.srcStageMask = b.src_stages;
+        v.srcAccessMask = b.src_access;
+        v.dstStageMask = b.dst_stages;
+        v.dstAccessMask = b.dst_access;
+        v.oldLayout = b.old_layout;
+        v.newLayout = b.new_layout;
+        v.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        v.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        v.image = physical_image(b.physical);
+        v.subresourceRange = b.range;
+        images.push_back(v);
+    }
+    std::vector<VkBufferMemoryBarrier2> buffers;
+    for (const BufferBarrier& b : batch.buffers) {
+        VkBufferMemoryBarrier2 v{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2};
+        v.srcStageMask = b.src_stages;
+        v.srcAccessMask = b.src_access;
+        v.dstStageMask = b.dst_stages;
+        v.dstAccessMask = b.dst_access;
+        v.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        v.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        v.buffer = physical_buffer(b.physical);
+        v.size = VK_WHOLE_SIZE;
+        buffers.push_back(v);
+    }
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.imageMemoryBarrierCount = static_cast<uint32_t>(images.size());
+    dep.pImageMemoryBarriers = images.data();
+    dep.bufferMemoryBarrierCount = static_cast<uint32_t>(buffers.size());
+    dep.pBufferMemoryBarriers = buffers.data();
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+void GraphRun::record(VkCommandBuffer cmd) {
+    if (recorded_) throw UsageError("a GraphRun records once; compile and run the graph again");
+    recorded_ = true;
+    if (queries_) vkCmdResetQueryPool(cmd, queries_, 0, static_cast<uint32_t>(compiled_.passes.size() * 2));
+    for (uint32_t i = 0; i < compiled_.passes.size(); ++i) {
+        const CompiledPass& cp = compiled_.passes[i];
+        const PassNode& pass = compiled_.graph->passes()[cp.pass];
+        if (context_.cmd_begin_label) {
+            VkDebugUtilsLabelEXT label{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
+            label.pLabelName = pass.name.c_str();
+            context_.cmd_begin_label(cmd, &label);
+        }
+        record_barriers(cmd, cp.barriers_before);
+        if (queries_) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_, i * 2);
+        if (pass.execute) {
+            PassContext pc(*this, context_, cmd);
+            pass.execute(pc);
+        }
+        if (queries_) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_, i * 2 + 1);
+        if (context_.cmd_end_label) context_.cmd_end_label(cmd);
+    }
+    record_barriers(cmd, compiled_.final_barriers);
+}
+
+void GraphRun::submit_and_wait() {
+    if (!pool_) {
+        VkCommandPoolCreateInfo info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+        info.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+        info.queueFamilyIndex = context_.queue_family();
+        vk_check(vkCreateCommandPool(context_.device(), &info, nullptr, &pool_), "vkCreateCommandPool");
+        context_.set_name(pool_, VK_OBJECT_TYPE_COMMAND_POOL, "render graph commands");
+    }
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    alloc.commandPool = pool_;
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    vk_check(vkAllocateCommandBuffers(context_.device(), &alloc, &cmd), "vkAllocateCommandBuffers");
+    context_.set_name(cmd, VK_OBJECT_TYPE_COMMAND_BUFFER, "render graph");
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    vk_check(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer");
+    record(cmd);
+    vk_check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+    context_.submit_and_wait(cmd);
+}
+
+std::vector<PassTiming> GraphRun::timings() const {
+    std::vector<PassTiming> out;
+    if (!queries_ || !recorded_) return out;
+    std::vector<uint64_t> ticks(compiled_.passes.size() * 2);
+    VkResult r = vkGetQueryPoolResults(context_.device(), queries_, 0, static_cast<uint32_t>(ticks.size()),
+                                       ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
+                                       VK_QUERY_RESULT_64_BIT);
+    if (r != VK_SUCCESS) return out;
+    for (uint32_t i = 0; i < compiled_.passes.size(); ++i) {
+        const uint64_t begin = ticks[i * 2], end = ticks[i * 2 + 1];
+        const double ms = end >= begin ? double(end - begin) * context_.timestamp_period_ns() * 1e-6 : 0.0;
+        out.push_back({compiled_.graph->passes()[compiled_.passes[i].pass].name, ms});
+    }
+    return out;
+}
+
+std::unique_ptr<GraphRun> run_graph(Context& context, const CompiledGraph& compiled) {
+    auto run = std::make_unique<GraphRun>(context, compiled);
+    run->submit_and_wait();
+    return run;
+}
+
+}  // namespace facet

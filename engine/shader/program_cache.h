@@ -1,0 +1,37 @@
+#pragma once
+// Compute pipelines built from shaders/ on first use and kept for the context's life,
+// keyed by shader name + defines (a pass asks for its program each time it is added).
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "core/result.h"
+#include "gpu/pipeline.h"
+#include "shader/compiler.h"
+
+namespace facet {
+
+class Context;
+
+class ProgramCache {
+public:
+    ProgramCache(Context& context, ShaderCompiler& compiler) : context_(context), compiler_(compiler) {}
+
+    // A compute pipeline for `shader` (path under shaders/) with push descriptors of the
+    // given types at bindings 0..n-1. The error carries the compiler's file:line message.
+    Result<const Pipeline*> compute(const std::string& shader, std::span<const VkDescriptorType> bindings,
+                                    uint32_t push_constant_bytes, std::span<const ShaderDefine> defines = {});
+
+    Context& context() { return context_; }
+
+private:
+    Context& context_;
+    ShaderCompiler& compiler_;
+    std::map<std::string, std::unique_ptr<Pipeline>> pipelines_;
+};
+
+}  // namespace facet
