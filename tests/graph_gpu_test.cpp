@@ -1,0 +1,276 @@
+// The render graph on lavapipe: compute passes chained through images, a mip chain, a
+// graphics pass drawing a triangle, timestamps. Results are checked against values
+// computed here on the CPU; the fixture fails on any validation message.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "graph/compiled_graph.h"
+#include "graph/graph_run.h"
+#include "graph/render_graph.h"
+#include "gpu/pipeline.h"
+#include "gpu/transfer.h"
+#include "shader/compiler.h"
+#include "support/gpu_test.h"
+
+namespace facet {
+namespace {
+
+constexpr const char* pattern_source = R"(#version 460
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0, rgba32f) uniform writeonly image2D dst;
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, imageSize(dst)))) return;
+    imageStore(dst, p, vec4(p.x, p.y, p.x * 0.5 + p.y * 0.25, 1.0));
+}
+)";
+
+// Reads `src` through a sampler at texel centres (nearest), writes 2 * src + 1.
+constexpr const char* transform_source = R"(#version 460
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0) uniform sampler2D src;
+layout(binding = 1, rgba32f) uniform writeonly image2D dst;
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, imageSize(dst)))) return;
+    imageStore(dst, p, 2.0 * texelFetch(src, p, 0) + 1.0);
+}
+)";
+
+// Box-filters mip m-1 into mip m (each texel the mean of its 2x2 parents).
+constexpr const char* downsample_source = R"(#version 460
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0) uniform sampler2D src;
+layout(binding = 1, rgba32f) uniform writeonly image2D dst;
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(p, imageSize(dst)))) return;
+    vec4 sum = texelFetch(src, 2 * p, 0) + texelFetch(src, 2 * p + ivec2(1, 0), 0) +
+               texelFetch(src, 2 * p + ivec2(0, 1), 0) + texelFetch(src, 2 * p + ivec2(1, 1), 0);
+    imageStore(dst, p, sum * 0.25);
+}
+)";
+
+constexpr const char* triangle_vertex = R"(#version 460
+void main() {
+    // A triangle covering the lower-left half of the target (clip space, y down).
+    vec2 corners[3] = vec2[](vec2(-1.0, -1.0), vec2(-1.0, 1.0), vec2(1.0, 1.0));
+    gl_Position = vec4(corners[gl_VertexIndex], 0.0, 1.0);
+}
+)";
+
+constexpr const char* triangle_fragment = R"(#version 460
+layout(location = 0) out vec4 color;
+void main() { color = vec4(0.25, 0.5, 1.0, 1.0); }
+)";
+
+class GraphGpuTest : public test::GpuTest {
+protected:
+    Pipeline compute(const char* source, std::vector<VkDescriptorType> bindings) {
+        auto spirv = compiler_.compile_source(ShaderStage::compute, "test.comp", source);
+        EXPECT_TRUE(spirv) << spirv.error().message;
+        return Pipeline::compute(ctx(), spirv->words, bindings, 0, "test pipeline");
+    }
+    std::vector<float> read_rgba32f(GraphRun& run, ImageHandle h, uint32_t mip, VkImageLayout layout) {
+        Image* image = run.transient_image(h);
+        EXPECT_NE(image, nullptr);
+        auto bytes = read_image(ctx(), *image, mip, 0, layout);
+        std::vector<float> values(bytes.size() / 4);
+        std::memcpy(values.data(), bytes.data(), bytes.size());
+        return values;
+    }
+    ShaderCompiler compiler_;
+    Sampler sampler_{ctx(), VK_FILTER_NEAREST, false, false, "test nearest"};
+};
+
+const ResourceState readable{VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                             VK_ACCESS_2_TRANSFER_READ_BIT};
+
+TEST_F(GraphGpuTest, ComputeChainMatchesCpu) {
+    const uint32_t w = 256, h = 128;  // 32 x 16 workgroups: enough for every lavapipe thread
+    Pipeline pattern = compute(pattern_source, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
+    Pipeline transform =
+        compute(transform_source, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
+    ImageDesc desc;
+    desc.width = w;
+    desc.height = h;
+    RenderGraph g;
+    auto a = g.create_image("pattern", desc);
+    auto b = g.create_image("transformed", desc);
+    g.add_compute_pass("pattern", [&](PassBuilder& pb) { a = pb.write_storage(a); }, [&](PassContext& pc) {
+        pattern.bind(pc.cmd());
+        const DescriptorWrite writes[] = {DescriptorWrite::storage_image(pc.view(a))};
+        pattern.push_descriptors(pc.cmd(), writes);
+        vkCmdDispatch(pc.cmd(), group_count(w, 8), group_count(h, 8), 1);
+    });
+    g.add_compute_pass("transform", [&](PassBuilder& pb) {
+        pb.sample(a);
+        b = pb.write_storage(b);
+    }, [&](PassContext& pc) {
+        transform.bind(pc.cmd());
+        const DescriptorWrite writes[] = {DescriptorWrite::sampled_image(pc.view(a), sampler_.handle()),
+                                          DescriptorWrite::storage_image(pc.view(b))};
+        transform.push_descriptors(pc.cmd(), writes);
+        vkCmdDispatch(pc.cmd(), group_count(w, 8), group_count(h, 8), 1);
+    });
+    g.export_image(b, readable);
+    CompiledGraph compiled = g.compile();
+    auto run = run_graph(ctx(), compiled);
+    auto values = read_rgba32f(*run, b, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    ASSERT_EQ(values.size(), size_t(w) * h * 4);
+    double max_error = 0;
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) {
+            const float* t = &values[(size_t(y) * w + x) * 4];
+            const double expected[4] = {2.0 * x + 1, 2.0 * y + 1, 2 * (x * 0.5 + y * 0.25) + 1, 3.0};
+            for (int c = 0; c < 4; ++c) max_error = std::max(max_error, std::abs(t[c] - expected[c]));
+        }
+    EXPECT_EQ(max_error, 0.0);
+
+    auto timings = run->timings();
+    ASSERT_EQ(timings.size(), 2u);
+    EXPECT_EQ(timings[0].name, "pattern");
+    for (const PassTiming& t : timings) {
+        EXPECT_GE(t.time_ms, 0.0);
+        EXPECT_TRUE(std::isfinite(t.time_ms));
+    }
+}
+
+TEST_F(GraphGpuTest, MipChainPassesReadThePreviousLevel) {
+    const uint32_t size = 64, mips = 4;
+    Pipeline pattern = compute(pattern_source, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
+    Pipeline downsample =
+        compute(downsample_source, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
+    ImageDesc desc;
+    desc.width = desc.height = size;
+    desc.mip_levels = mips;
+    RenderGraph g;
+    auto chain = g.create_image("chain", desc);
+    g.add_compute_pass("mip 0", [&](PassBuilder& pb) { chain = pb.write_storage(chain, ImageRange::mip(0)); },
+                       [&, handle = chain](PassContext& pc) {
+                           pattern.bind(pc.cmd());
+                           const DescriptorWrite writes[] = {
+                               DescriptorWrite::storage_image(pc.view(handle, ImageRange::mip(0)))};
+                           pattern.push_descriptors(pc.cmd(), writes);
+                           vkCmdDispatch(pc.cmd(), size / 8, size / 8, 1);
+                       });
+    for (uint32_t m = 1; m < mips; ++m) {
+        g.add_compute_pass("mip " + std::to_string(m), [&, m](PassBuilder& pb) {
+            pb.sample(chain, ImageRange::mip(m - 1));
+            chain = pb.write_storage(chain, ImageRange::mip(m));
+        }, [&, m, handle = chain](PassContext& pc) {
+            downsample.bind(pc.cmd());
+            const DescriptorWrite writes[] = {
+                DescriptorWrite::sampled_image(pc.view(handle, ImageRange::mip(m - 1)), sampler_.handle()),
+                DescriptorWrite::storage_image(pc.view(handle, ImageRange::mip(m)))};
+            downsample.push_descriptors(pc.cmd(), writes);
+            vkCmdDispatch(pc.cmd(), group_count(size >> m, 8), group_count(size >> m, 8), 1);
+        });
+    }
+    g.export_image(chain, readable);
+    CompiledGraph compiled = g.compile();
+    auto run = run_graph(ctx(), compiled);
+    // The mean of a linear pattern over a block is its value at the block centre.
+    for (uint32_t m = 0; m < mips; ++m) {
+        auto values = read_rgba32f(*run, chain, m, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        const uint32_t n = size >> m;
+        ASSERT_EQ(values.size(), size_t(n) * n * 4);
+        double max_error = 0;
+        for (uint32_t y = 0; y < n; ++y)
+            for (uint32_t x = 0; x < n; ++x) {
+                const double cx = x * double(1 << m) + ((1 << m) - 1) / 2.0;
+                const double cy = y * double(1 << m) + ((1 << m) - 1) / 2.0;
+                const float* t = &values[(size_t(y) * n + x) * 4];
+                max_error = std::max({max_error, std::abs(t[0] - cx), std::abs(t[1] - cy),
+                                      std::abs(t[2] - (cx * 0.5 + cy * 0.25))});
+            }
+        EXPECT_LT(max_error, 1e-4) << "mip " << m;
+    }
+}
+
+TEST_F(GraphGpuTest, GraphicsPassClearsAndDrawsATriangle) {
+    const uint32_t w = 64, h = 64;
+    auto vs = compiler_.compile_source(ShaderStage::vertex, "triangle.vert", triangle_vertex);
+    auto fs = compiler_.compile_source(ShaderStage::fragment, "triangle.frag", triangle_fragment);
+    ASSERT_TRUE(vs && fs);
+    Pipeline::GraphicsDesc pd;
+    pd.vertex_spirv = vs->words;
+    pd.fragment_spirv = fs->words;
+    pd.color_formats = {VK_FORMAT_R8G8B8A8_UNORM};
+    Pipeline triangle = Pipeline::graphics(ctx(), pd, "triangle");
+    ImageDesc desc;
+    desc.format = VK_FORMAT_R8G8B8A8_UNORM;
+    desc.width = w;
+    desc.height = h;
+    RenderGraph g;
+    auto target = g.create_image("target", desc);
+    g.add_graphics_pass("draw", [&](PassBuilder& pb) { target = pb.color_attachment(target); },
+                        [&, handle = target](PassContext& pc) {
+                            VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+                            color.imageView = pc.view(handle);
+                            color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+                            color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+                            color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+                            color.clearValue.color = {{1.0f, 0.0f, 0.0f, 1.0f}};
+                            VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+                            info.renderArea = {{0, 0}, {w, h}};
+                            info.layerCount = 1;
+                            info.colorAttachmentCount = 1;
+                            info.pColorAttachments = &color;
+                            vkCmdBeginRendering(pc.cmd(), &info);
+                            VkViewport viewport{0, 0, float(w), float(h), 0, 1};
+                            VkRect2D scissor{{0, 0}, {w, h}};
+                            vkCmdSetViewport(pc.cmd(), 0, 1, &viewport);
+                            vkCmdSetScissor(pc.cmd(), 0, 1, &scissor);
+                            triangle.bind(pc.cmd());
+                            vkCmdDraw(pc.cmd(), 3, 1, 0, 0);
+                            vkCmdEndRendering(pc.cmd());
+                        });
+    g.export_image(target, readable);
+    CompiledGraph compiled = g.compile();
+    auto run = run_graph(ctx(), compiled);
+    auto bytes = read_image(ctx(), *run->transient_image(target), 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    ASSERT_EQ(bytes.size(), size_t(w) * h * 4);
+    auto pixel = [&](uint32_t x, uint32_t y) {
+        const auto* p = reinterpret_cast<const uint8_t*>(bytes.data()) + (size_t(y) * w + x) * 4;
+        return std::array<int, 4>{p[0], p[1], p[2], p[3]};
+    };
+    const std::array<int, 4> blue{64, 128, 255, 255}, red{255, 0, 0, 255};
+    // The diagonal runs from the top-left to the bottom-right corner: below it is inside.
+    EXPECT_EQ(pixel(2, 60), blue);
+    EXPECT_EQ(pixel(10, 40), blue);
+    EXPECT_EQ(pixel(60, 2), red);
+    EXPECT_EQ(pixel(40, 10), red);
+    int inside = 0;
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) inside += pixel(x, y) == blue;
+    EXPECT_NEAR(inside, w * h / 2, w);  // half the target, give or take the diagonal
+}
+
+TEST_F(GraphGpuTest, HostRecordedCommandBuffer) {
+    Pipeline pattern = compute(pattern_source, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
+    ImageDesc desc;
+    desc.width = desc.height = 16;
+    RenderGraph g;
+    auto a = g.create_image("pattern", desc);
+    g.add_compute_pass("pattern", [&](PassBuilder& pb) { a = pb.write_storage(a); }, [&](PassContext& pc) {
+        pattern.bind(pc.cmd());
+        const DescriptorWrite writes[] = {DescriptorWrite::storage_image(pc.view(a))};
+        pattern.push_descriptors(pc.cmd(), writes);
+        vkCmdDispatch(pc.cmd(), 2, 2, 1);
+    });
+    g.export_image(a, readable);
+    CompiledGraph compiled = g.compile();
+    GraphRun run(ctx(), compiled);
+    ctx().submit_and_wait([&](VkCommandBuffer cmd) { run.record(cmd); });  // the host's buffer
+    auto values = read_rgba32f(run, a, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    EXPECT_EQ(values[(5 * 16 + 3) * 4 + 0], 3.0f);
+    EXPECT_EQ(values[(5 * 16 + 3) * 4 + 1], 5.0f);
+    EXPECT_EQ(run.timings().size(), 1u);
+    EXPECT_THROW(run.record(VK_NULL_HANDLE), UsageError);
+}
+
+}  // namespace
+}  // namespace facet
