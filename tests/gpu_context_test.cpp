@@ -194,3 +194,32 @@ TEST(GpuValidation, WrongLayoutIsCounted) {
 
 }  // namespace
 }  // namespace facet
+
+namespace facet {
+namespace {
+
+// Synchronization validation is on: a copy that reads a buffer right after a fill writes
+// it, with no barrier between them, is a read-after-write hazard it must report.
+TEST(GpuValidation, MissingBarrierIsASyncHazard) {
+    ContextOptions options;
+    options.validation = true;
+    options.sync_validation = true;
+    auto created = Context::create(options);
+    ASSERT_TRUE(created) << created.error().message;
+    Context& context = *created.value();
+    Buffer a(context, 256, VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::gpu_only,
+             "hazard source");
+    Buffer b(context, 256, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::gpu_only, "hazard destination");
+    testing::internal::CaptureStderr();
+    context.submit_and_wait([&](VkCommandBuffer cmd) {
+        vkCmdFillBuffer(cmd, a.handle(), 0, 256, 42);
+        VkBufferCopy region{0, 0, 256};
+        vkCmdCopyBuffer(cmd, a.handle(), b.handle(), 1, &region);
+    });
+    std::string printed = testing::internal::GetCapturedStderr();
+    EXPECT_GT(context.validation_message_count(), 0u);
+    EXPECT_NE(printed.find("SYNC-HAZARD"), std::string::npos) << printed;
+}
+
+}  // namespace
+}  // namespace facet
