@@ -2,12 +2,74 @@
 
 #include <cmath>
 
+#include "core/hash.h"
+#include "graph/graph_run.h"
+#include "shader/program_cache.h"
+
 namespace facet {
+
+namespace {
+
+// Mirrors the push-constant block of shaders/ibl/procedural_sky.comp.
+struct SkyParams {
+    float sun_direction_cos_radius[4];
+    float sun_radiance_glow[4];
+    float zenith[4];
+    float horizon[4];
+    float ground[4];
+};
+
+}  // namespace
+
+ProceduralSky ProceduralSky::white() {
+    ProceduralSky s;
+    s.sun_radiance = s.zenith_radiance = s.horizon_radiance = s.ground_radiance = {1.0f, 1.0f, 1.0f};
+    s.sun_glow = 0.0f;
+    return s;
+}
 
 std::array<float, 3> ProceduralSky::sun_direction() const {
     const double to_rad = 3.14159265358979323846 / 180.0;
     const double el = sun_elevation_deg * to_rad, az = sun_azimuth_deg * to_rad;
     return {float(std::cos(el) * std::cos(az)), float(std::sin(el)), float(std::cos(el) * std::sin(az))};
+}
+
+std::string ProceduralSky::content_hash() const {
+    Hash64 h;
+    h.add("facet procedural sky v1");
+    const float values[] = {sun_elevation_deg, sun_azimuth_deg, sun_angular_radius_deg, sun_radiance[0],
+                            sun_radiance[1],   sun_radiance[2], sun_glow,               zenith_radiance[0],
+                            zenith_radiance[1], zenith_radiance[2], horizon_radiance[0], horizon_radiance[1],
+                            horizon_radiance[2], ground_radiance[0], ground_radiance[1], ground_radiance[2]};
+    h.add(values, sizeof values);
+    return h.hex();
+}
+
+Result<ImageHandle> add_procedural_sky_pass(RenderGraph& graph, ProgramCache& programs, const ProceduralSky& sky,
+                                            ImageHandle target) {
+    const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
+    auto pipeline = programs.compute("ibl/procedural_sky.comp", bindings, sizeof(SkyParams));
+    if (!pipeline) return pipeline.error();
+    const auto dir = sky.sun_direction();
+    const double to_rad = 3.14159265358979323846 / 180.0;
+    SkyParams params{{dir[0], dir[1], dir[2], float(std::cos(sky.sun_angular_radius_deg * to_rad))},
+                     {sky.sun_radiance[0], sky.sun_radiance[1], sky.sun_radiance[2], sky.sun_glow},
+                     {sky.zenith_radiance[0], sky.zenith_radiance[1], sky.zenith_radiance[2], 0},
+                     {sky.horizon_radiance[0], sky.horizon_radiance[1], sky.horizon_radiance[2], 0},
+                     {sky.ground_radiance[0], sky.ground_radiance[1], sky.ground_radiance[2], 0}};
+    ImageHandle written;
+    graph.add_compute_pass("procedural sky", [&](PassBuilder& b) { written = b.write_storage(target, ImageRange::mip(0)); },
+                           [p = pipeline.value(), params, target](PassContext& pc) {
+                               const ImageDesc& d = pc.desc(target);
+                               p->bind(pc.cmd());
+                               const DescriptorWrite writes[] = {
+                                   DescriptorWrite::storage_image(pc.view(target, ImageRange::mip(0)))};
+                               p->push_descriptors(pc.cmd(), writes);
+                               p->push_constants(pc.cmd(), params);
+                               // 8x8 groups over the whole image: lavapipe spreads groups over its threads.
+                               vkCmdDispatch(pc.cmd(), group_count(d.width, 8), group_count(d.height, 8), 1);
+                           });
+    return written;
 }
 
 }  // namespace facet

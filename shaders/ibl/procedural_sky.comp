@@ -10,7 +10,7 @@ layout(binding = 0, rgba32f) uniform writeonly image2D out_sky;
 
 layout(push_constant) uniform Params {
     vec4 sun_direction_cos_radius;  // xyz: unit direction to the sun; w: cos(angular radius)
-    vec4 sun_radiance;              // rgb: radiance inside the disk
+    vec4 sun_radiance_glow;         // rgb: radiance inside the disk; a: halo strength
     vec4 zenith_radiance;           // rgb
     vec4 horizon_radiance;          // rgb
     vec4 ground_radiance;           // rgb
@@ -19,7 +19,7 @@ layout(push_constant) uniform Params {
 vec3 sky_radiance(vec3 d) {
     vec3 sun = params.sun_direction_cos_radius.xyz;
     float cos_sun = dot(d, sun);
-    if (cos_sun >= params.sun_direction_cos_radius.w) return params.sun_radiance.rgb;
+    if (cos_sun >= params.sun_direction_cos_radius.w) return params.sun_radiance_glow.rgb;
     if (d.y < 0.0) {
         // Ground, fading into the horizon over a few degrees.
         float t = clamp(-d.y / 0.05, 0.0, 1.0);
@@ -28,7 +28,7 @@ vec3 sky_radiance(vec3 d) {
     vec3 sky = mix(params.horizon_radiance.rgb, params.zenith_radiance.rgb, sqrt(d.y));
     // Forward-scattering glow around the sun (a smooth lobe, not a second light).
     float glow = pow(max(cos_sun, 0.0), 64.0);
-    return sky + glow * 2.0 * params.horizon_radiance.rgb;
+    return sky + glow * params.sun_radiance_glow.a * params.horizon_radiance.rgb;
 }
 
 void main() {
