@@ -1,0 +1,104 @@
+// facet-bake as a user runs it: help, bad arguments, bad outputs, and a real bake.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Ran {
+    int status = -1;
+    std::string output;  // stdout and stderr together
+};
+
+Ran run(const std::string& args) {
+    Ran r;
+    const std::string command = std::string(FACET_BAKE_PATH) + " " + args + " 2>&1";
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) return r;
+    std::array<char, 4096> buf;
+    size_t n;
+    while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
+    const int raw = pclose(pipe);
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    return r;
+}
+
+struct TempDir {
+    fs::path path = fs::temp_directory_path() / ("facet_bake_test_" + std::to_string(::getpid()));
+    TempDir() { fs::create_directories(path); }
+    ~TempDir() { fs::remove_all(path); }
+};
+
+TEST(FacetBake, HelpAndVersion) {
+    Ran help = run("--help");
+    EXPECT_EQ(help.status, 0);
+    EXPECT_NE(help.output.find("Usage: facet-bake"), std::string::npos) << help.output;
+    EXPECT_NE(help.output.find("--out DIR"), std::string::npos);
+    Ran version = run("--version");
+    EXPECT_EQ(version.status, 0);
+    EXPECT_NE(version.output.find("facet-bake 0."), std::string::npos) << version.output;
+}
+
+TEST(FacetBake, BadArgumentsExitTwoWithAReason) {
+    Ran none = run("");
+    EXPECT_EQ(none.status, 2);
+    EXPECT_NE(none.output.find("expected exactly one environment"), std::string::npos) << none.output;
+    Ran no_out = run("builtin:sky");
+    EXPECT_EQ(no_out.status, 2);
+    EXPECT_NE(no_out.output.find("--out"), std::string::npos) << no_out.output;
+    Ran unknown = run("builtin:sky --out x --frobnicate");
+    EXPECT_EQ(unknown.status, 2);
+    EXPECT_NE(unknown.output.find("--frobnicate"), std::string::npos) << unknown.output;
+    Ran bad_width = run("builtin:sky --out x --width 12abc");
+    EXPECT_EQ(bad_width.status, 2);
+    EXPECT_NE(bad_width.output.find("--width"), std::string::npos) << bad_width.output;
+}
+
+TEST(FacetBake, BadInputsNameTheProblemAndWriteNothing) {
+    TempDir dir;
+    const std::string out = (dir.path / "out").string();
+    Ran unknown = run("builtin:nothing --out " + out);
+    EXPECT_EQ(unknown.status, 1);
+    EXPECT_NE(unknown.output.find("builtin:nothing"), std::string::npos) << unknown.output;
+    Ran missing = run((dir.path / "missing.hdr").string() + " --out " + out);
+    EXPECT_EQ(missing.status, 1);
+    EXPECT_NE(missing.output.find("missing.hdr: no such file"), std::string::npos) << missing.output;
+    EXPECT_FALSE(fs::exists(out));
+
+    std::ofstream(dir.path / "a_file") << "x";
+    Ran file_as_dir = run("builtin:sky --width 64 --out " + (dir.path / "a_file").string());
+    EXPECT_EQ(file_as_dir.status, 1);
+    EXPECT_NE(file_as_dir.output.find("not a directory"), std::string::npos) << file_as_dir.output;
+}
+
+TEST(FacetBake, BakesTheBuiltInSky) {
+    TempDir dir;
+    const std::string out = (dir.path / "sky").string();
+    Ran bake = run("builtin:sky --width 128 --validation --out " + out);
+    ASSERT_EQ(bake.status, 0) << bake.output;
+    EXPECT_EQ(bake.output.find("validation:"), std::string::npos) << bake.output;
+    for (const char* name : {"environment.exr", "environment.hdr", "environment.png", "bake.json"})
+        EXPECT_TRUE(fs::exists(fs::path(out) / name)) << name;
+    std::ifstream json(fs::path(out) / "bake.json");
+    std::string text((std::istreambuf_iterator<char>(json)), {});
+    EXPECT_NE(text.find("\"procedural sky\""), std::string::npos) << text;
+    EXPECT_NE(text.find("\"gpu_time_ms\""), std::string::npos) << text;
+    EXPECT_NE(text.find("\"content_hash\""), std::string::npos) << text;
+    size_t files = 0;
+    for (auto& e : fs::directory_iterator(out)) files += e.is_regular_file();
+    EXPECT_EQ(files, 4u) << "no temporary files left behind";
+
+    Ran again = run("builtin:sky --width 128 --out " + out);
+    ASSERT_EQ(again.status, 0) << again.output;
+    EXPECT_NE(again.output.find("replacing"), std::string::npos) << "replacing is said, not silent";
+}
+
+}  // namespace
