@@ -13,9 +13,13 @@ namespace fs = std::filesystem;
 
 Status write_atomically(const std::string& path, const std::function<Status(const std::string&)>& write) {
     fs::path target(path);
-    fs::path temp = target.parent_path() /
-                    ("." + target.stem().string() + ".partial-" + std::to_string(::getpid()) +
-                     target.extension().string());
+    // Hidden, per process, same extension. (Built with += : GCC 12 warns falsely on
+    // "literal" + std::string, PR 105651.)
+    std::string name = ".";
+    name += target.stem().string();
+    name += ".partial-" + std::to_string(::getpid());
+    name += target.extension().string();
+    fs::path temp = target.parent_path() / name;
     auto discard = [&] {
         std::error_code ignored;
         fs::remove(temp, ignored);

@@ -28,11 +28,16 @@ std::string json_escape(std::string_view text) {
     return out + "\"";
 }
 
+void JsonWriter::newline_indent() {
+    out_ += '\n';
+    out_.append(first_.size() * 2, ' ');
+}
+
 void JsonWriter::key_prefix(std::string_view key) {
     if (!first_.empty()) {
         if (!first_.back()) out_ += ",";
         first_.back() = false;
-        out_ += "\n" + std::string(first_.size() * 2, ' ');
+        newline_indent();
     }
     if (!key.empty()) out_ += json_escape(key) + ": ";
 }
@@ -47,7 +52,7 @@ JsonWriter& JsonWriter::begin_object(std::string_view key) {
 JsonWriter& JsonWriter::end_object() {
     bool empty = first_.back();
     first_.pop_back();
-    if (!empty) out_ += "\n" + std::string(first_.size() * 2, ' ');
+    if (!empty) newline_indent();
     out_ += "}";
     return *this;
 }
@@ -62,7 +67,7 @@ JsonWriter& JsonWriter::begin_array(std::string_view key) {
 JsonWriter& JsonWriter::end_array() {
     bool empty = first_.back();
     first_.pop_back();
-    if (!empty) out_ += "\n" + std::string(first_.size() * 2, ' ');
+    if (!empty) newline_indent();
     out_ += "]";
     return *this;
 }

@@ -27,6 +27,7 @@ public:
 
 private:
     void key_prefix(std::string_view key);
+    void newline_indent();
     std::string out_;
     std::vector<bool> first_;  // per open container: nothing written yet
 };
