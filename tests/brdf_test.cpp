@@ -64,15 +64,8 @@ std::vector<BrdfOutput> evaluate(Context& context, const std::vector<BrdfInput>&
                                           DescriptorWrite::storage_buffer(out.handle())};
         pipeline.push_descriptors(cmd, writes);
         vkCmdDispatch(cmd, group_count(static_cast<uint32_t>(inputs.size()), 64), 1, 1);
-        VkMemoryBarrier2 to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        to_host.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-        to_host.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-        to_host.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-        to_host.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.memoryBarrierCount = 1;
-        dep.pMemoryBarriers = &to_host;
-        vkCmdPipelineBarrier2(cmd, &dep);
+        memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     });
     out.invalidate();
     std::vector<BrdfOutput> result(inputs.size());

@@ -52,6 +52,19 @@ VkBufferImageCopy copy_region(const Image& image, uint32_t mip, uint32_t layer) 
 
 }  // namespace
 
+void memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stages, VkAccessFlags2 src_access,
+                    VkPipelineStageFlags2 dst_stages, VkAccessFlags2 dst_access) {
+    VkMemoryBarrier2 b{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    b.srcStageMask = src_stages;
+    b.srcAccessMask = src_access;
+    b.dstStageMask = dst_stages;
+    b.dstAccessMask = dst_access;
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.memoryBarrierCount = 1;
+    dep.pMemoryBarriers = &b;
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
 void upload_image(Context& context, Image& image, uint32_t mip, uint32_t layer,
                   std::span<const std::byte> data, VkImageLayout current_layout, VkImageLayout final_layout) {
     check_subresource(image, mip, layer);
@@ -84,15 +97,8 @@ std::vector<std::byte> read_image(Context& context, const Image& image, uint32_t
         vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(), 1,
                                &region);
         barrier(cmd, layout_barrier(image.handle(), range, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, current_layout));
-        VkMemoryBarrier2 to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        to_host.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-        to_host.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        to_host.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-        to_host.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.memoryBarrierCount = 1;
-        dep.pMemoryBarriers = &to_host;
-        vkCmdPipelineBarrier2(cmd, &dep);
+        memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                       VK_ACCESS_2_HOST_READ_BIT);
     });
     staging.invalidate();
     std::vector<std::byte> out(bytes);
@@ -113,15 +119,8 @@ void upload_buffer(Context& context, Buffer& buffer, std::span<const std::byte> 
     context.submit_and_wait([&](VkCommandBuffer cmd) {
         VkBufferCopy region{0, 0, data.size()};
         vkCmdCopyBuffer(cmd, staging.handle(), buffer.handle(), 1, &region);
-        VkMemoryBarrier2 done{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        done.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-        done.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        done.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-        done.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.memoryBarrierCount = 1;
-        dep.pMemoryBarriers = &done;
-        vkCmdPipelineBarrier2(cmd, &dep);
+        memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
     });
 }
 
@@ -135,24 +134,12 @@ std::vector<std::byte> read_buffer(Context& context, const Buffer& buffer) {
     Buffer staging(context, buffer.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::readback,
                    "readback staging");
     context.submit_and_wait([&](VkCommandBuffer cmd) {
-        VkMemoryBarrier2 before{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        before.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-        before.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
-        before.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-        before.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.memoryBarrierCount = 1;
-        dep.pMemoryBarriers = &before;
-        vkCmdPipelineBarrier2(cmd, &dep);
+        memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
         VkBufferCopy region{0, 0, buffer.size()};
         vkCmdCopyBuffer(cmd, buffer.handle(), staging.handle(), 1, &region);
-        VkMemoryBarrier2 to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        to_host.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-        to_host.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        to_host.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-        to_host.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-        dep.pMemoryBarriers = &to_host;
-        vkCmdPipelineBarrier2(cmd, &dep);
+        memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                       VK_ACCESS_2_HOST_READ_BIT);
     });
     staging.invalidate();
     std::memcpy(out.data(), staging.mapped(), out.size());

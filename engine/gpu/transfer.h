@@ -23,6 +23,10 @@ void upload_image(Context& context, Image& image, uint32_t mip, uint32_t layer,
 std::vector<std::byte> read_image(Context& context, const Image& image, uint32_t mip,
                                   uint32_t layer, VkImageLayout current_layout);
 
+// A global memory barrier (synchronization2), e.g. compute writes -> host reads.
+void memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stages, VkAccessFlags2 src_access,
+                    VkPipelineStageFlags2 dst_stages, VkAccessFlags2 dst_access);
+
 void upload_buffer(Context& context, Buffer& buffer, std::span<const std::byte> data);
 std::vector<std::byte> read_buffer(Context& context, const Buffer& buffer);
 

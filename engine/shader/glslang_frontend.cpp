@@ -66,16 +66,31 @@ private:
 
 constexpr const char* include_extension = "#extension GL_GOOGLE_include_directive : require\n";
 
-std::unique_ptr<glslang::TShader> make_shader(const Input& input, const char* const* text, const int* length,
-                                              const char* const* name, std::string& preamble) {
-    auto shader = std::make_unique<glslang::TShader>(to_glslang(input.stage));
-    shader->setStringsWithLengthsAndNames(text, length, name, 1);
-    preamble = std::string(include_extension) + input.preamble;
-    shader->setPreamble(preamble.c_str());
-    shader->setEnvInput(glslang::EShSourceGlsl, to_glslang(input.stage), glslang::EShClientVulkan, 100);
-    shader->setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_3);
-    shader->setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_5);
-    return shader;
+// A TShader with its inputs: glslang keeps pointers to the string arrays and the
+// preamble, so they live beside it.
+struct PreparedShader {
+    const char* text;
+    int length;
+    const char* name;
+    std::string preamble;
+    std::unique_ptr<glslang::TShader> shader;
+};
+
+std::unique_ptr<PreparedShader> prepare(const Input& input) {
+    initialize_once();
+    auto p = std::make_unique<PreparedShader>();
+    p->text = input.text.c_str();
+    p->length = static_cast<int>(input.text.size());
+    p->name = input.name.c_str();
+    p->preamble = std::string(include_extension) + input.preamble;
+    p->shader = std::make_unique<glslang::TShader>(to_glslang(input.stage));
+    glslang::TShader& shader = *p->shader;
+    shader.setStringsWithLengthsAndNames(&p->text, &p->length, &p->name, 1);
+    shader.setPreamble(p->preamble.c_str());
+    shader.setEnvInput(glslang::EShSourceGlsl, to_glslang(input.stage), glslang::EShClientVulkan, 100);
+    shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_3);
+    shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_5);
+    return p;
 }
 
 EShMessages messages(const Input& input) {
@@ -119,12 +134,8 @@ std::string format_log(std::string_view log, const ShaderLibrary& library, const
 }
 
 Result<std::string> preprocess(const ShaderLibrary& library, const Input& input) {
-    initialize_once();
-    const char* text = input.text.c_str();
-    const int length = static_cast<int>(input.text.size());
-    const char* name = input.name.c_str();
-    std::string preamble;
-    auto shader = make_shader(input, &text, &length, &name, preamble);
+    auto prepared = prepare(input);
+    glslang::TShader* shader = prepared->shader.get();
     LibraryIncluder includer(library);
     std::string output;
     if (!shader->preprocess(GetDefaultResources(), 460, ENoProfile, false, false, messages(input), &output,
@@ -134,17 +145,13 @@ Result<std::string> preprocess(const ShaderLibrary& library, const Input& input)
 }
 
 Result<std::vector<uint32_t>> compile(const ShaderLibrary& library, const Input& input) {
-    initialize_once();
-    const char* text = input.text.c_str();
-    const int length = static_cast<int>(input.text.size());
-    const char* name = input.name.c_str();
-    std::string preamble;
-    auto shader = make_shader(input, &text, &length, &name, preamble);
+    auto prepared = prepare(input);
+    glslang::TShader* shader = prepared->shader.get();
     LibraryIncluder includer(library);
     if (!shader->parse(GetDefaultResources(), 460, false, messages(input), includer))
         return Error{format_log(shader->getInfoLog(), library, input.name, input.text)};
     glslang::TProgram program;
-    program.addShader(shader.get());
+    program.addShader(shader);
     if (!program.link(messages(input)))
         return Error{input.name + ": link error: " + program.getInfoLog()};
     if (std::string warnings = format_log(shader->getInfoLog(), library, input.name, input.text);

@@ -3,6 +3,7 @@
 #include <facet/gpu/context.h>
 #include <facet/gpu/pipeline.h>
 #include <facet/gpu/resources.h>
+#include <facet/gpu/transfer.h>
 #include <facet/shader/compiler.h>
 
 #include <cstdio>
@@ -34,15 +35,8 @@ void main() { uint i = gl_GlobalInvocationID.x; values[i] = i * i; }
         const facet::DescriptorWrite writes[] = {facet::DescriptorWrite::storage_buffer(buffer.handle())};
         pipeline.push_descriptors(cmd, writes);
         vkCmdDispatch(cmd, count / 64, 1, 1);
-        VkMemoryBarrier2 to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        to_host.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-        to_host.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-        to_host.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-        to_host.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.memoryBarrierCount = 1;
-        dep.pMemoryBarriers = &to_host;
-        vkCmdPipelineBarrier2(cmd, &dep);
+        facet::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     });
     buffer.invalidate();
     const auto* values = static_cast<const uint32_t*>(buffer.mapped());
