@@ -45,7 +45,6 @@ GraphRun::~GraphRun() {
     VkDevice device = context_.device();
     for (auto& [key, view] : views_) vkDestroyImageView(device, view, nullptr);
     if (queries_) vkDestroyQueryPool(device, queries_, nullptr);
-    if (pool_) vkDestroyCommandPool(device, pool_, nullptr);
 }
 
 void GraphRun::allocate() {
@@ -206,26 +205,7 @@ void GraphRun::record(VkCommandBuffer cmd) {
 }
 
 void GraphRun::submit_and_wait() {
-    if (!pool_) {
-        VkCommandPoolCreateInfo info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-        info.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-        info.queueFamilyIndex = context_.queue_family();
-        vk_check(vkCreateCommandPool(context_.device(), &info, nullptr, &pool_), "vkCreateCommandPool");
-        context_.set_name(pool_, VK_OBJECT_TYPE_COMMAND_POOL, "render graph commands");
-    }
-    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    alloc.commandPool = pool_;
-    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    alloc.commandBufferCount = 1;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    vk_check(vkAllocateCommandBuffers(context_.device(), &alloc, &cmd), "vkAllocateCommandBuffers");
-    context_.set_name(cmd, VK_OBJECT_TYPE_COMMAND_BUFFER, "render graph");
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    vk_check(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer");
-    record(cmd);
-    vk_check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
-    context_.submit_and_wait(cmd);
+    context_.submit_and_wait([this](VkCommandBuffer cmd) { record(cmd); });
 }
 
 std::vector<PassTiming> GraphRun::timings() const {

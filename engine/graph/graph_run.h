@@ -53,7 +53,7 @@ public:
 
     // Records everything into the host's command buffer (which must be recording).
     void record(VkCommandBuffer cmd);
-    // Records into a command buffer of its own, submits it and waits.
+    // Records into a one-time command buffer of the context, submits it and waits.
     void submit_and_wait();
 
     // GPU time of every executed pass, in order; call after the work completed.
@@ -86,7 +86,6 @@ private:
     std::vector<Buffer> buffers_;  // per physical buffer (empty for imported)
     std::vector<std::pair<ViewKey, VkImageView>> views_;
     VkQueryPool queries_ = VK_NULL_HANDLE;
-    VkCommandPool pool_ = VK_NULL_HANDLE;
     bool recorded_ = false;
 };
 
