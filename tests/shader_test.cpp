@@ -105,6 +105,14 @@ TEST(ShaderCompiler, MissingIncludeNamesTheIncludingFileAndLine) {
     EXPECT_NE(message.find("no_such_file.glsl"), std::string::npos) << message;
 }
 
+TEST(ShaderCompiler, ErrorInADefineSaysSo) {
+    ShaderCompiler compiler;
+    ShaderDefine bad{"1NOT_A_NAME", "1"};
+    auto spirv = compiler.compile_source(ShaderStage::compute, "fill.comp", fill_source, std::span(&bad, 1));
+    ASSERT_FALSE(spirv);
+    EXPECT_NE(spirv.error().message.find("(defines)"), std::string::npos) << spirv.error().message;
+}
+
 TEST(ShaderCompiler, UnknownShaderNameIsAnError) {
     ShaderCompiler compiler;
     auto spirv = compiler.compile(ShaderStage::compute, "no/such/shader.comp");

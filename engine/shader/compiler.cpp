@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -53,7 +54,9 @@ void write_disk(const std::string& dir, uint64_t key, const std::vector<uint32_t
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     const std::string path = disk_path(dir, key);
-    const std::string temp = path + ".partial-" + std::to_string(::getpid());
+    // Unique per process and call, so concurrent writers of one key never share a file.
+    static std::atomic<uint32_t> counter{0};
+    const std::string temp = path + ".partial-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
     DiskHeader header;
     header.word_count = static_cast<uint32_t>(words.size());
     header.key = key;
@@ -108,6 +111,7 @@ Result<Spirv> ShaderCompiler::compile_source(ShaderStage stage, std::string_view
                              .add(input.preamble)
                              .add(stage_name(stage))
                              .add(options_.debug_info ? "debug" : "release")
+                             .add(glslang_frontend::toolchain_tag())
                              .value();
     {
         std::lock_guard lock(mutex_);

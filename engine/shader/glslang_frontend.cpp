@@ -1,6 +1,7 @@
 #include "shader/glslang_frontend.h"
 
 #include <glslang/Public/ResourceLimits.h>
+#include <glslang/build_info.h>
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
 
@@ -117,7 +118,8 @@ std::string format_log(std::string_view log, const ShaderLibrary& library, const
     while (std::getline(in, line)) {
         std::smatch m;
         if (std::regex_match(line, m, located)) {
-            const std::string file = m[2].str() == "0" ? main_name : m[2].str();
+            // glslang names the preamble (our #defines) string -1.
+            const std::string file = m[2].str() == "0" ? main_name : m[2].str() == "-1" ? "(defines)" : m[2].str();
             const int number = std::stoi(m[3].str());
             const char* kind = m[1].str() == "ERROR" ? "error" : "warning";
             out += file + ":" + std::to_string(number) + ": " + kind + ": " + m[4].str() + "\n";
@@ -131,6 +133,14 @@ std::string format_log(std::string_view log, const ShaderLibrary& library, const
         }
     }
     return out;
+}
+
+const std::string& toolchain_tag() {
+    static const std::string tag = "glslang " + std::to_string(GLSLANG_VERSION_MAJOR) + "." +
+                                   std::to_string(GLSLANG_VERSION_MINOR) + "." +
+                                   std::to_string(GLSLANG_VERSION_PATCH) + GLSLANG_VERSION_FLAVOR +
+                                   ", Vulkan 1.3, SPIR-V 1.5";
+    return tag;
 }
 
 Result<std::string> preprocess(const ShaderLibrary& library, const Input& input) {

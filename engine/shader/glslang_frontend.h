@@ -19,6 +19,10 @@ struct Input {
     bool debug_info = false;
 };
 
+// What else decides the SPIR-V for a given source: the glslang version and the targets.
+// Part of every cache key, so an upgrade or a new target never serves old entries.
+const std::string& toolchain_tag();
+
 // The source with every #include expanded and macros applied.
 Result<std::string> preprocess(const ShaderLibrary& library, const Input& input);
 Result<std::vector<uint32_t>> compile(const ShaderLibrary& library, const Input& input);
