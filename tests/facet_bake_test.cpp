@@ -68,6 +68,10 @@ TEST(FacetBake, BadInputsNameTheProblemAndWriteNothing) {
     Ran unknown = run("builtin:nothing --out " + out);
     EXPECT_EQ(unknown.status, 1);
     EXPECT_NE(unknown.output.find("builtin:nothing"), std::string::npos) << unknown.output;
+    std::ofstream(dir.path / "garbage.hdr") << "not an image";
+    Ran garbage = run((dir.path / "garbage.hdr").string() + " --out " + out);
+    EXPECT_EQ(garbage.status, 1);
+    EXPECT_NE(garbage.output.find("garbage.hdr: cannot read the image"), std::string::npos) << garbage.output;
     Ran missing = run((dir.path / "missing.hdr").string() + " --out " + out);
     EXPECT_EQ(missing.status, 1);
     EXPECT_NE(missing.output.find("missing.hdr: no such file"), std::string::npos) << missing.output;
@@ -85,7 +89,8 @@ TEST(FacetBake, BakesTheBuiltInSky) {
     Ran bake = run("builtin:sky --width 128 --validation --out " + out);
     ASSERT_EQ(bake.status, 0) << bake.output;
     EXPECT_EQ(bake.output.find("validation:"), std::string::npos) << bake.output;
-    for (const char* name : {"environment.exr", "environment.hdr", "environment.png", "bake.json"})
+    for (const char* name :
+         {"environment.exr", "environment.hdr", "environment.png", "brdf_lut.exr", "brdf_lut.png", "bake.json"})
         EXPECT_TRUE(fs::exists(fs::path(out) / name)) << name;
     std::ifstream json(fs::path(out) / "bake.json");
     std::string text((std::istreambuf_iterator<char>(json)), {});
@@ -94,11 +99,25 @@ TEST(FacetBake, BakesTheBuiltInSky) {
     EXPECT_NE(text.find("\"content_hash\""), std::string::npos) << text;
     size_t files = 0;
     for (auto& e : fs::directory_iterator(out)) files += e.is_regular_file();
-    EXPECT_EQ(files, 4u) << "no temporary files left behind";
+    EXPECT_EQ(files, 6u) << "no temporary files left behind";
 
     Ran again = run("builtin:sky --width 128 --out " + out);
     ASSERT_EQ(again.status, 0) << again.output;
     EXPECT_NE(again.output.find("replacing"), std::string::npos) << "replacing is said, not silent";
+}
+
+TEST(FacetBake, BakesAnEnvironmentFile) {
+    TempDir dir;
+    const std::string out = (dir.path / "studio").string();
+    const std::string env = std::string(FACET_SHARED_DATA_DIR) + "/env/studio_small_03_1k.hdr";
+    Ran bake = run(env + " --lut-size 32 --lut-samples 256 --validation --out " + out);
+    ASSERT_EQ(bake.status, 0) << bake.output;
+    EXPECT_NE(bake.output.find("1024x512"), std::string::npos) << bake.output;
+    EXPECT_EQ(bake.output.find("validation:"), std::string::npos) << bake.output;
+    std::ifstream json(fs::path(out) / "bake.json");
+    std::string text((std::istreambuf_iterator<char>(json)), {});
+    EXPECT_NE(text.find("\"upload environment\""), std::string::npos) << text;
+    EXPECT_NE(text.find("\"samples\": 256"), std::string::npos) << text;
 }
 
 }  // namespace
