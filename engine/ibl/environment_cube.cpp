@@ -1,0 +1,71 @@
+#include "ibl/environment_cube.h"
+
+#include <string>
+
+#include "gpu/resources.h"
+#include "graph/graph_run.h"
+#include "shader/program_cache.h"
+
+namespace facet {
+
+uint32_t cube_size_for(uint32_t equirect_height) { return std::max(1u, equirect_height / 2); }
+
+uint32_t full_mip_count(uint32_t size) {
+    uint32_t mips = 1;
+    while ((size >> mips) > 0) ++mips;
+    return mips;
+}
+
+ImageDesc environment_cube_desc(uint32_t size, uint32_t mips) {
+    ImageDesc d;
+    d.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    d.width = d.height = size;
+    d.mip_levels = mips;
+    d.array_layers = 6;
+    d.cube = true;
+    return d;
+}
+
+Result<ImageHandle> add_environment_cube_passes(RenderGraph& graph, ProgramCache& programs,
+                                                const Sampler& equirect_sampler, ImageHandle equirect,
+                                                ImageHandle cube) {
+    const VkDescriptorType to_cube_bindings[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                                 VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
+    auto to_cube = programs.compute("ibl/equirect_to_cube.comp", to_cube_bindings, 0);
+    if (!to_cube) return to_cube.error();
+    const VkDescriptorType downsample_bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
+    auto downsample = programs.compute("ibl/cube_downsample.comp", downsample_bindings, 0);
+    if (!downsample) return downsample.error();
+
+    const ImageDesc desc = graph.resource(cube).image_desc;
+    const VkSampler sampler = equirect_sampler.handle();
+    const VkImageViewType array = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+    ImageHandle current;
+    graph.add_compute_pass("equirect to cube", [&](PassBuilder& b) {
+        b.sample(equirect, ImageRange::mip(0));
+        current = b.write_storage(cube, ImageRange::mip(0));
+    }, [p = *to_cube, equirect, cube, sampler, n = desc.width, array](PassContext& pc) {
+        p->bind(pc.cmd());
+        const DescriptorWrite writes[] = {
+            DescriptorWrite::sampled_image(pc.view(equirect, ImageRange::mip(0)), sampler),
+            DescriptorWrite::storage_image(pc.view(cube, ImageRange::mip(0), array))};
+        p->push_descriptors(pc.cmd(), writes);
+        vkCmdDispatch(pc.cmd(), group_count(n, 8), group_count(n, 8), 6);
+    });
+    for (uint32_t m = 1; m < desc.mip_levels; ++m) {
+        graph.add_compute_pass("cube mip " + std::to_string(m), [&](PassBuilder& b) {
+            b.read_storage(current, ImageRange::mip(m - 1));
+            current = b.write_storage(current, ImageRange::mip(m));
+        }, [p = *downsample, cube, m, n = desc.mip_width(m), array](PassContext& pc) {
+            p->bind(pc.cmd());
+            const DescriptorWrite writes[] = {
+                DescriptorWrite::storage_image(pc.view(cube, ImageRange::mip(m - 1), array)),
+                DescriptorWrite::storage_image(pc.view(cube, ImageRange::mip(m), array))};
+            p->push_descriptors(pc.cmd(), writes);
+            vkCmdDispatch(pc.cmd(), group_count(n, 8), group_count(n, 8), 6);
+        });
+    }
+    return current;
+}
+
+}  // namespace facet

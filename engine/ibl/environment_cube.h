@@ -1,0 +1,28 @@
+#pragma once
+// The environment as a cube map with a full mip chain, built by compute passes:
+// equirect -> level 0, then each level from the one above by solid-angle weighting.
+#include <cstdint>
+
+#include "core/result.h"
+#include "graph/render_graph.h"
+
+namespace facet {
+
+class ProgramCache;
+class Sampler;
+
+// Face size for an equirect of the given height: about height / 2 (design choice: a cube
+// face texel then spans about the angle of an equirect texel), at least 1.
+uint32_t cube_size_for(uint32_t equirect_height);
+uint32_t full_mip_count(uint32_t size);
+
+// The cube image description: RGBA32F, 6 layers, cube-compatible, `mips` levels.
+ImageDesc environment_cube_desc(uint32_t size, uint32_t mips);
+
+// Fills every level of `cube` from `equirect` (sampled with `equirect_sampler`: linear,
+// repeat in u); returns the cube's final version.
+Result<ImageHandle> add_environment_cube_passes(RenderGraph& graph, ProgramCache& programs,
+                                                const Sampler& equirect_sampler, ImageHandle equirect,
+                                                ImageHandle cube);
+
+}  // namespace facet
