@@ -1,0 +1,44 @@
+#pragma once
+// Diffuse irradiance, stored as E(n) / pi in a small cube (design.md), by one of the
+// methods the thesis and its references discuss, each a compute pass of the graph.
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "core/result.h"
+#include "graph/render_graph.h"
+
+namespace facet {
+
+class ProgramCache;
+class Sampler;
+
+enum class IrradianceMethod {
+    convolve,  // exact cosine convolution over every texel of a small level (default)
+    riemann,   // the thesis' Riemann sum over (phi, theta) with a step
+    blur,      // spherical Gaussian blur of a small level (cheap alternative)
+    lowmip,    // trilinear sample of a low level (cheapest alternative)
+};
+
+const char* irradiance_method_name(IrradianceMethod method);
+std::optional<IrradianceMethod> parse_irradiance_method(const std::string& name);
+
+struct IrradianceSettings {
+    IrradianceMethod method = IrradianceMethod::convolve;
+    uint32_t size = 32;          // output face size
+    uint32_t source_size = 32;   // convolve/blur: largest source face size used
+    float riemann_step = 0.025f; // riemann: step in radians (the thesis' value)
+    float blur_sigma = 0.5f;     // blur: Gaussian width in radians
+    uint32_t lowmip_size = 2;    // lowmip: face size of the level sampled
+};
+
+// Reads `environment` (a cube with its full mip chain, sampled with `cube_sampler`:
+// linear, mipmapped) and writes `irradiance` (RGBA32F cube, settings.size, 1 level).
+Result<ImageHandle> add_irradiance_passes(RenderGraph& graph, ProgramCache& programs, const Sampler& cube_sampler,
+                                          ImageHandle environment, ImageHandle irradiance,
+                                          const IrradianceSettings& settings);
+
+// The level of a cube of face `size` whose faces are at most `max_face` texels wide.
+uint32_t level_at_most(uint32_t size, uint32_t mip_levels, uint32_t max_face);
+
+}  // namespace facet

@@ -1,0 +1,59 @@
+#version 460
+// Diffuse irradiance E(n) / pi by direct convolution: a sum over every texel of a small
+// level of the environment cube, each weighted by max(0, n . w) and its solid angle.
+// `convolve`: the exact Lambert kernel, E/pi = 1/pi * integral L max(0, n . w) dw. Each
+// entry (a block of level-0 texels, see cube_texels.comp) is taken as a spherical cap
+// around its radiance-weighted direction, and the clamped cosine is integrated over that
+// cap in closed form, also where n's horizon cuts it (Snyder 1996, as given in Lagarde
+// and de Rousiers 2014, "Moving Frostbite to PBR", sphere lights).
+// `blur` (the thesis' cheap alternative): a normalised spherical Gaussian of width sigma
+// instead of the cosine; right for a uniform sky, a blur of it otherwise.
+#include "ibl/cube.glsl"
+
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+layout(std430, binding = 0) readonly buffer Texels { vec4 texels[]; };
+layout(binding = 1, rgba32f) uniform writeonly image2DArray irradiance;
+
+layout(push_constant) uniform Params {
+    uint texel_count;
+    uint gaussian;     // 0: cosine (convolve), 1: Gaussian (blur)
+    float sigma;       // Gaussian width in radians (blur)
+} params;
+
+const float PI_C = 3.14159265358979323846;
+
+// Integral of max(0, n . w) over a cap of angular radius sigma whose axis makes angle
+// theta with n, divided by pi sin^2(sigma) (so that it is cos(theta) when fully visible).
+float clipped_cap_cosine(float cos_theta, float sin2_sigma) {
+    if (cos_theta * cos_theta > sin2_sigma) return max(cos_theta, 0.0);
+    float sin_theta = sqrt(max(1.0 - cos_theta * cos_theta, 0.0));
+    float x = sqrt(max(1.0 / sin2_sigma - 1.0, 0.0));
+    float y = clamp(-x * cos_theta / max(sin_theta, 1e-7), -1.0, 1.0);
+    float sin_theta_sqrt_y = sin_theta * sqrt(1.0 - y * y);
+    float e = (cos_theta * acos(y) - x * sin_theta_sqrt_y) * sin2_sigma + atan(sin_theta_sqrt_y, x);
+    return max(e, 0.0) / (PI_C * sin2_sigma);
+}
+
+void main() {
+    uint n = uint(imageSize(irradiance).x);
+    uvec3 id = gl_GlobalInvocationID;
+    if (id.x >= n || id.y >= n) return;
+    vec3 normal = normalize(cube_direction(id.z, (vec2(id.xy) + 0.5) / float(n)));
+    vec3 sum = vec3(0.0);
+    float weight_sum = 0.0;
+    float inv_sigma2 = 1.0 / max(params.sigma * params.sigma, 1e-6);
+    for (uint i = 0u; i < params.texel_count; ++i) {
+        vec4 direction_spread = texels[2u * i];
+        vec4 radiance_solid_angle_and_solid_angle = texels[2u * i + 1u];
+        vec3 radiance_solid_angle = radiance_solid_angle_and_solid_angle.rgb;
+        float c = dot(normal, direction_spread.xyz);
+        float w = params.gaussian == 0u ? clipped_cap_cosine(c, max(direction_spread.w, 1e-12))
+                                        : exp((c - 1.0) * inv_sigma2);
+        sum += w * radiance_solid_angle;
+        weight_sum += w * radiance_solid_angle_and_solid_angle.w;
+    }
+    // Normalised by the discrete kernel's own integral over the sphere (which tends to pi
+    // for the clamped cosine), so a uniform sky is exact at any resolution.
+    vec3 result = sum / max(weight_sum, 1e-30);
+    imageStore(irradiance, ivec3(id), vec4(result, 1.0));
+}

@@ -1,0 +1,159 @@
+// Diffuse irradiance (E/pi) of every method against brute-force double-precision
+// integration over every texel of the same environment, on skies with a small sun.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "gpu/resources.h"
+#include "ibl/environment_cube.h"
+#include "ibl/irradiance.h"
+#include "io/environment_image.h"
+#include "support/gpu_test.h"
+#include "support/ibl_gpu.h"
+#include "support/ibl_reference.h"
+
+namespace facet {
+namespace {
+
+using namespace test;
+
+// Over the centres of all output texels (at 16^2-32^2 faces, dozens lie within 10
+// degrees of the sun): relRMSE = RMS(Y - Y_true) / mean(Y_true) of luminance, the error
+// "relative to the mean" the issue quotes for SH; max_rel = max |Y - Y_true| / Y_true per
+// direction, which is largest where the sun sets below n's horizon.
+struct Errors {
+    double rel_rmse = 0;
+    double max_rel = 0;
+    bool finite = true;
+};
+
+class IrradianceTest : public GpuTest {
+protected:
+    CubeLevels bake(const Equirect& e, IrradianceSettings s) {
+        return run_ibl(ctx(), e, [&](RenderGraph& g, ProgramCache& programs, const Sampler& sampler, ImageHandle cube) {
+            auto out = g.create_image("irradiance", environment_cube_desc(s.size, 1));
+            auto written = add_irradiance_passes(g, programs, sampler, cube, out, s);
+            EXPECT_TRUE(written) << (written ? "" : written.error().message);
+            return *written;
+        });
+    }
+
+    Errors measure(const Equirect& e, const CubeLevels& irr) {
+        Errors err;
+        double sum = 0, truth_sum = 0;
+        size_t count = 0;
+        const uint32_t n = irr.size;
+        for (uint32_t f = 0; f < 6; ++f)
+            for (uint32_t y = 0; y < n; ++y)
+                for (uint32_t x = 0; x < n; ++x) {
+                    const Vec3 d = cube_texel_direction(f, x, y, n);
+                    const float* gpu = irr.texel(0, f, x, y);
+                    for (int c = 0; c < 3; ++c) err.finite &= std::isfinite(gpu[c]) && gpu[c] >= 0;
+                    const double truth = luminance(irradiance_over_pi(e, d));
+                    const double diff = luminance(gpu) - truth;
+                    sum += diff * diff;
+                    truth_sum += truth;
+                    err.max_rel = std::max(err.max_rel, std::abs(diff) / truth);
+                    ++count;
+                }
+        err.rel_rmse = std::sqrt(sum / count) / (truth_sum / count);
+        return err;
+    }
+};
+
+IrradianceSettings with(IrradianceMethod method, uint32_t size = 16) {
+    IrradianceSettings s;
+    s.method = method;
+    s.size = size;
+    return s;
+}
+
+TEST(IrradianceReference, CubeTexelDirectionsFollowTheSpecTable) {
+    for (uint32_t f = 0; f < 6; ++f)
+        for (uint32_t y = 0; y < 4; ++y)
+            for (uint32_t x = 0; x < 4; ++x) {
+                uint32_t face;
+                double s, t;
+                select_cube_face(cube_texel_direction(f, x, y, 4), face, s, t);
+                EXPECT_EQ(face, f);
+                EXPECT_NEAR(s, (x + 0.5) / 4, 1e-12);
+                EXPECT_NEAR(t, (y + 0.5) / 4, 1e-12);
+            }
+}
+
+TEST_F(IrradianceTest, WhiteFurnaceIsOneForEveryMethod) {
+    const Equirect white = uniform_sky(64, 32, 1.0f);
+    for (auto m : {IrradianceMethod::convolve, IrradianceMethod::riemann, IrradianceMethod::blur,
+                   IrradianceMethod::lowmip}) {
+        CubeLevels irr = bake(white, with(m, 8));
+        for (size_t i = 0; i < irr.levels[0].size(); ++i)
+            if (i % 4 != 3) ASSERT_NEAR(irr.levels[0][i], 1.0f, 1e-3f) << irradiance_method_name(m);
+    }
+}
+
+// A sun of 5e4, 2.5 degrees wide. The issue's target for the default is relRMSE <= 0.5%;
+// this measures 0.75% (0.91% from a 512x256 input), while the same sky without its sun
+// gives 0.012%: the remaining error is in how the sun reaches the cube, not in the
+// convolution (a finer source level does not change it). Bound: what is achieved, so a
+// regression fails; the 0.5% target stays open.
+TEST_F(IrradianceTest, ConvolveOnASunnySky) {
+    const Equirect sky = sun_sky(256, 128, 5e4, 2.5, 30, 40);
+    Errors err = measure(sky, bake(sky, IrradianceSettings{}));
+    std::printf("sun sky, convolve 32^2: relRMSE %.4f%%, max %.4f%%\n", 100 * err.rel_rmse, 100 * err.max_rel);
+    EXPECT_TRUE(err.finite);
+    EXPECT_LE(err.rel_rmse, 0.01);
+    const Equirect no_sun = sun_sky(256, 128, 1.0, 2.5, 30, 40);
+    EXPECT_LE(measure(no_sun, bake(no_sun, IrradianceSettings{})).rel_rmse, 0.001);
+}
+
+TEST_F(IrradianceTest, ConvolveOnTheSharedEnvironments) {
+    for (const char* name : {"venice_sunset_1k.hdr", "royal_esplanade_1k.hdr", "studio_small_03_1k.hdr",
+                             "empty_warehouse_01_1k.hdr"}) {
+        auto env = load_environment(std::string(FACET_SHARED_DATA_DIR) + "/env/" + name);
+        ASSERT_TRUE(env) << env.error().message;
+        const Equirect e = downsample(Equirect{env->width, env->height, env->rgba}, 4);
+        Errors err = measure(e, bake(e, IrradianceSettings{}));
+        std::printf("%s (256x128), convolve 32^2: relRMSE %.4f%%, max %.4f%%\n", name, 100 * err.rel_rmse,
+                    100 * err.max_rel);
+        EXPECT_TRUE(err.finite) << name;
+        EXPECT_LE(err.rel_rmse, 0.005) << name;
+    }
+}
+
+// The other methods, measured where they break: a small bright sun. Their bounds state
+// what each method gives there (the chart in facet-bench will show the trade-off).
+TEST_F(IrradianceTest, CheaperMethodsOnASunnySky) {
+    const Equirect sky = sun_sky(256, 128, 5e4, 2.5, 30, 40);
+    struct Case {
+        IrradianceMethod method;
+        double bound;
+    };
+    // Measured: riemann 2.3%, blur 83%, lowmip 236% (relative to the mean).
+    for (Case c : {Case{IrradianceMethod::riemann, 0.05}, Case{IrradianceMethod::blur, 1.0},
+                   Case{IrradianceMethod::lowmip, 3.0}}) {
+        Errors err = measure(sky, bake(sky, with(c.method)));
+        std::printf("sun sky, %s 16^2: relRMSE %.2f%%, max %.2f%%\n", irradiance_method_name(c.method),
+                    100 * err.rel_rmse, 100 * err.max_rel);
+        EXPECT_TRUE(err.finite) << irradiance_method_name(c.method);
+        EXPECT_LE(err.rel_rmse, c.bound) << irradiance_method_name(c.method);
+    }
+}
+
+TEST_F(IrradianceTest, TinyInputsAndBlackSkiesAreFinite) {
+    for (auto [w, h] : {std::pair{1u, 1u}, {2u, 1u}, {6u, 2u}}) {
+        const Equirect tiny = uniform_sky(w, h, 0.5f);
+        for (auto m : {IrradianceMethod::convolve, IrradianceMethod::riemann, IrradianceMethod::blur,
+                       IrradianceMethod::lowmip}) {
+            CubeLevels irr = bake(tiny, with(m, 4));
+            for (size_t i = 0; i < irr.levels[0].size(); ++i)
+                if (i % 4 != 3) ASSERT_NEAR(irr.levels[0][i], 0.5f, 1e-3f) << w << "x" << h << " "
+                                                                          << irradiance_method_name(m);
+        }
+    }
+    CubeLevels black = bake(uniform_sky(32, 16, 0.0f), with(IrradianceMethod::convolve, 4));
+    for (size_t i = 0; i < black.levels[0].size(); ++i)
+        if (i % 4 != 3) ASSERT_EQ(black.levels[0][i], 0.0f);
+}
+
+}  // namespace
+}  // namespace facet
