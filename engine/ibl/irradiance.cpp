@@ -70,7 +70,7 @@ Result<ImageHandle> add_cube_sampling(RenderGraph& graph, ProgramCache& programs
     const bool riemann = s.method == IrradianceMethod::riemann;
     const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
     auto program =
-        programs.compute(riemann ? "ibl/irradiance_riemann.comp" : "ibl/irradiance_lowmip.comp", bindings, sizeof(float));
+        programs.compute(riemann ? "ibl/irradiance_riemann.comp" : "ibl/cube_sample_lod.comp", bindings, sizeof(float));
     if (!program) return program.error();
     const ImageDesc& env = graph.resource(environment).image_desc;
     float parameter = s.riemann_step;

@@ -1,0 +1,178 @@
+#include "ibl/specular.h"
+
+#include <cmath>
+
+#include "gpu/resources.h"
+#include "graph/graph_run.h"
+#include "ibl/irradiance.h"
+#include "shader/program_cache.h"
+
+namespace facet {
+
+namespace {
+
+constexpr VkImageViewType array_view = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+
+void dispatch_cube(PassContext& pc, uint32_t n) { vkCmdDispatch(pc.cmd(), group_count(n, 8), group_count(n, 8), 6); }
+
+}  // namespace
+
+const char* specular_method_name(SpecularMethod method) {
+    switch (method) {
+        case SpecularMethod::automatic: return "automatic";
+        case SpecularMethod::importance: return "importance";
+        case SpecularMethod::filtered: return "filtered";
+        case SpecularMethod::convolve: return "convolve";
+        case SpecularMethod::mips: return "mips";
+    }
+    return "?";
+}
+
+std::optional<SpecularMethod> parse_specular_method(const std::string& name) {
+    for (auto m : {SpecularMethod::automatic, SpecularMethod::importance, SpecularMethod::filtered,
+                   SpecularMethod::convolve, SpecularMethod::mips})
+        if (name == specular_method_name(m)) return m;
+    return std::nullopt;
+}
+
+std::vector<float> specular_level_roughness(uint32_t levels) {
+    std::vector<float> r(levels, 0.0f);
+    for (uint32_t m = 1; m < levels; ++m) r[m] = float(m) / float(levels - 1);
+    return r;
+}
+
+SpecularMethod specular_level_method(const SpecularSettings& s, float roughness) {
+    if (s.method != SpecularMethod::automatic) return s.method;
+    return roughness >= s.automatic_convolve_from ? SpecularMethod::convolve : SpecularMethod::filtered;
+}
+
+uint32_t convolve_source_size(float roughness) {
+    // The lobe's full width at half maximum in l is about 2.6 alpha radians.
+    const double alpha = std::max(double(roughness) * roughness, 1e-4);
+    const double wanted = 8.0 * (3.14159265358979323846 / 2) / (2.6 * alpha);
+    uint32_t size = 8;
+    while (size < 64 && size < wanted) size *= 2;
+    return size;
+}
+
+Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& programs, const Sampler& cube_sampler,
+                                        ImageHandle environment, ImageHandle specular, const SpecularSettings& s) {
+    const ImageDesc env = graph.resource(environment).image_desc;
+    const ImageDesc out = graph.resource(specular).image_desc;
+    if (!out.cube || out.width != env.width || out.mip_levels != s.levels)
+        return Error{"specular: the output must be a cube of the environment's face size with " +
+                     std::to_string(s.levels) + " levels"};
+    if (s.levels > env.mip_levels) return Error{"specular: more levels than the environment cube has"};
+    if (s.sample_count == 0) return Error{"specular: sample count must be at least 1"};
+
+    const VkDescriptorType storage2[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
+    const VkDescriptorType sampled[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
+    const VkDescriptorType list_bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+    const VkDescriptorType conv_bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
+    auto copy = programs.compute("ibl/cube_copy_level.comp", storage2, 0);
+    if (!copy) return copy.error();
+
+    ImageHandle current;
+    graph.add_compute_pass("specular level 0 (copy)", [&](PassBuilder& b) {
+        b.read_storage(environment, ImageRange::mip(0));
+        current = b.write_storage(specular, ImageRange::mip(0));
+    }, [p = *copy, environment, specular, n = env.width](PassContext& pc) {
+        p->bind(pc.cmd());
+        const DescriptorWrite writes[] = {
+            DescriptorWrite::storage_image(pc.view(environment, ImageRange::mip(0), array_view)),
+            DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(0), array_view))};
+        p->push_descriptors(pc.cmd(), writes);
+        dispatch_cube(pc, n);
+    });
+
+    const std::vector<float> roughness = specular_level_roughness(s.levels);
+    for (uint32_t m = 1; m < s.levels; ++m) {
+        const float r = roughness[m];
+        const SpecularMethod method = specular_level_method(s, r);
+        const uint32_t n = out.mip_width(m);
+        const std::string name = "specular level " + std::to_string(m) + " (" + specular_method_name(method) + ")";
+        if (method == SpecularMethod::convolve) {
+            auto list = programs.compute("ibl/cube_texels.comp", list_bindings, sizeof(uint32_t));
+            if (!list) return list.error();
+            struct Params {
+                uint32_t texel_count;
+                float roughness;
+            };
+            auto conv = programs.compute("ibl/specular_convolve.comp", conv_bindings, sizeof(Params));
+            if (!conv) return conv.error();
+            const uint32_t level = level_at_most(env.width, env.mip_levels, convolve_source_size(r));
+            const uint32_t source = env.mip_width(level);
+            const Params params{6 * source * source, r};
+            auto texels = graph.create_buffer("specular texels " + std::to_string(m),
+                                              {VkDeviceSize(params.texel_count) * 32});
+            BufferHandle listed;
+            graph.add_compute_pass(name + " texels", [&](PassBuilder& b) {
+                b.read_storage(environment, ImageRange::mip(0));
+                listed = b.write(texels);
+            }, [p = *list, environment, texels, block = 1u << level, source](PassContext& pc) {
+                p->bind(pc.cmd());
+                const DescriptorWrite writes[] = {
+                    DescriptorWrite::storage_image(pc.view(environment, ImageRange::mip(0), array_view)),
+                    DescriptorWrite::storage_buffer(pc.buffer(texels))};
+                p->push_descriptors(pc.cmd(), writes);
+                p->push_constants(pc.cmd(), block);
+                dispatch_cube(pc, source);
+            });
+            graph.add_compute_pass(name, [&](PassBuilder& b) {
+                b.read(listed);
+                current = b.write_storage(current, ImageRange::mip(m));
+            }, [p = *conv, texels, specular, m, n, params](PassContext& pc) {
+                p->bind(pc.cmd());
+                const DescriptorWrite writes[] = {
+                    DescriptorWrite::storage_buffer(pc.buffer(texels)),
+                    DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(m), array_view))};
+                p->push_descriptors(pc.cmd(), writes);
+                p->push_constants(pc.cmd(), params);
+                dispatch_cube(pc, n);
+            });
+            continue;
+        }
+        if (method == SpecularMethod::mips) {
+            auto sample = programs.compute("ibl/cube_sample_lod.comp", sampled, sizeof(float));
+            if (!sample) return sample.error();
+            const float lod = r * float(env.mip_levels - 1);
+            graph.add_compute_pass(name, [&](PassBuilder& b) {
+                b.sample(environment);
+                current = b.write_storage(current, ImageRange::mip(m));
+            }, [p = *sample, environment, specular, m, n, lod, sampler = cube_sampler.handle()](PassContext& pc) {
+                p->bind(pc.cmd());
+                const DescriptorWrite writes[] = {
+                    DescriptorWrite::sampled_image(pc.view(environment), sampler),
+                    DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(m), array_view))};
+                p->push_descriptors(pc.cmd(), writes);
+                p->push_constants(pc.cmd(), lod);
+                dispatch_cube(pc, n);
+            });
+            continue;
+        }
+        struct Params {
+            uint32_t sample_count;
+            float roughness;
+            uint32_t filtered;
+            float source_size;
+        };
+        auto sample = programs.compute("ibl/specular_importance.comp", sampled, sizeof(Params));
+        if (!sample) return sample.error();
+        const Params params{s.sample_count, r, method == SpecularMethod::filtered ? 1u : 0u, float(env.width)};
+        graph.add_compute_pass(name, [&](PassBuilder& b) {
+            b.sample(environment);
+            current = b.write_storage(current, ImageRange::mip(m));
+        }, [p = *sample, environment, specular, m, n, params, sampler = cube_sampler.handle()](PassContext& pc) {
+            p->bind(pc.cmd());
+            const DescriptorWrite writes[] = {
+                DescriptorWrite::sampled_image(pc.view(environment), sampler),
+                DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(m), array_view))};
+            p->push_descriptors(pc.cmd(), writes);
+            p->push_constants(pc.cmd(), params);
+            dispatch_cube(pc, n);
+        });
+    }
+    return current;
+}
+
+}  // namespace facet
