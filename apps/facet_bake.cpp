@@ -1,86 +1,93 @@
-// facet-bake: environment -> image-based-lighting data. Today it brings the environment
-// into the render graph (generated on the GPU for builtin:sky and builtin:white, or
-// loaded from a file and uploaded), bakes the split-sum BRDF LUT, and writes the
-// environment as linear EXR and HDR, an sRGB preview PNG, the LUT and bake.json.
+// facet-bake: an environment -> the image-based-lighting data of design.md: the
+// prefiltered specular cube, the diffuse irradiance cube and the split-sum BRDF LUT
+// (KTX2), previews, and bake.json. All work is compute passes of one render graph.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <optional>
 #include <filesystem>
+#include <fstream>
+#include <optional>
 #include <vector>
 
+#include "bake_files.h"
 #include "cli.h"
-#include "core/result.h"
+#include "core/hash.h"
 #include "gpu/context.h"
-#include "gpu/transfer.h"
 #include "graph/compiled_graph.h"
 #include "graph/graph_run.h"
 #include "graph/transfer_passes.h"
 #include "ibl/brdf_lut.h"
+#include "ibl/environment_cube.h"
+#include "ibl/irradiance.h"
 #include "ibl/procedural_sky.h"
-#include "io/environment_image.h"
+#include "ibl/specular.h"
 #include "io/atomic_file.h"
-#include "io/image_io.h"
-#include "io/json_writer.h"
+#include "io/environment_image.h"
 #include "render/tonemap_preview.h"
 #include "shader/program_cache.h"
 
 namespace {
 
 using namespace facet;
+namespace fs = std::filesystem;
 
 constexpr const char* program = "facet-bake";
 
 struct Options {
-    std::string env;
-    std::string out_dir;
-    uint32_t width = 1024;
+    std::string env, out_dir, device, graph_dot;
+    uint32_t sky_width = 1024;
+    uint32_t cube_size = 0;  // 0: input height / 2
     float exposure = 1.0f;
-    std::string device;
-    bool validation = false;
-    std::string graph_dot;
-    bool sanitize = false;
+    bool validation = false, sanitize = false, force = false;
+    IrradianceSettings irradiance;
+    SpecularSettings specular;
     BrdfLutSettings lut;
 };
 
 cli::Parser make_parser() {
     cli::Parser p(program, "ENV|builtin:NAME --out DIR [options]",
-                  "Bakes image-based-lighting data for an environment: an equirectangular image\n"
-                  "(.hdr, .exr, any size) or a built-in one:\n"
-                  "  builtin:sky    procedural sky with a sun ~4e4 times brighter than the sky\n"
-                  "  builtin:white  uniform radiance 1 (the white furnace)\n"
-                  "Writes DIR/environment.exr (linear), environment.hdr, environment.png\n"
-                  "(Reinhard, sRGB), brdf_lut.exr (R = A, G = B, B = E_avg), brdf_lut.png and\n"
-                  "DIR/bake.json"
-                  "(passes, GPU times, device, version).");
-    p.option("--out", "DIR", "output directory (created if missing; earlier outputs are replaced)")
-        .option("--width", "N", "equirectangular width in texels, height is N/2 (default 1024)")
-        .option("--exposure", "E", "exposure of the preview PNG (default 1)")
-        .option("--device", "NAME|INDEX", "Vulkan device (default: FACET_DEVICE, a GPU, else lavapipe)")
-        .flag("--validation", "enable the Khronos validation layer")
-        .flag("--sanitize", "replace NaN, Inf and negative texels of ENV with 0 instead of failing")
+                  "Bakes image-based lighting for an equirectangular environment (.hdr, .exr, any\n"
+                  "size) or a built-in one (builtin:sky: a sun ~4e4 times the sky; builtin:white:\n"
+                  "radiance 1). Writes into DIR: specular.ktx2 (GGX prefiltered cube, one roughness\n"
+                  "per level), irradiance.ktx2 (E/pi cube), brdf_lut.ktx2 (R = A, G = B, B = E_avg),\n"
+                  "brdf_lut.png, environment.exr/.hdr/.png and bake.json. A bake whose bake.json\n"
+                  "records the same input and settings is skipped (--force redoes it).");
+    p.option("--out", "DIR", "output directory (created if missing)")
+        .option("--irradiance", "METHOD", "convolve (default), riemann, blur, lowmip")
+        .option("--specular", "METHOD", "automatic (default), importance, filtered, convolve, mips")
+        .option("--samples", "N", "GGX samples per texel for importance/filtered levels (default 256)")
+        .option("--size", "N", "cube face size (default: input height / 2)")
+        .option("--levels", "N", "specular levels, roughness m/(N-1) (default 6)")
+        .option("--irradiance-size", "N", "irradiance face size (default 32)")
         .option("--lut-size", "N", "BRDF LUT width and height (default 128)")
         .option("--lut-samples", "N", "GGX samples per LUT texel (default 2048)")
         .flag("--lut-height-correlated", "LUT with the height-correlated Smith term instead of Schlick-GGX")
+        .option("--width", "N", "width of a built-in environment (default 1024, height N/2)")
+        .option("--exposure", "E", "exposure of environment.png (default 1)")
+        .flag("--sanitize", "replace NaN, Inf and negative texels of ENV with 0 instead of failing")
+        .flag("--force", "bake even if DIR holds a bake of the same input and settings")
+        .option("--device", "NAME|INDEX", "Vulkan device (default: FACET_DEVICE, a GPU, else lavapipe)")
+        .flag("--validation", "enable the Khronos validation layer")
         .option("--graph-dot", "FILE", "also write the compiled render graph as Graphviz dot");
     return p;
 }
 
-Options parse(int argc, char** argv, bool& exit_now) {
+uint32_t positive(const cli::Parsed& a, const char* name, int max) {
+    return static_cast<uint32_t>(cli::parse_int(a.get(name), name, 1, max));
+}
+
+std::optional<Options> parse(int argc, char** argv) {
     cli::Parser parser = make_parser();
     cli::Parsed a = parser.parse(argc, argv);
-    exit_now = false;
     if (a.has("--help")) {
         std::fputs(parser.help_text().c_str(), stdout);
-        exit_now = true;
-        return {};
+        return std::nullopt;
     }
     if (a.has("--version")) {
         std::printf("%s %s\n", program, FACET_VERSION);
-        exit_now = true;
-        return {};
+        return std::nullopt;
     }
     if (a.positional.size() != 1)
         throw std::invalid_argument("expected exactly one environment (a file or builtin:NAME), got " +
@@ -89,20 +96,34 @@ Options parse(int argc, char** argv, bool& exit_now) {
     Options o;
     o.env = a.positional[0];
     o.out_dir = a.get("--out");
-    if (a.has("--width")) o.width = static_cast<uint32_t>(cli::parse_int(a.get("--width"), "--width", 2, 16384));
-    if (o.width % 2) throw std::invalid_argument("--width must be even (the height is width / 2)");
+    if (a.has("--irradiance")) {
+        auto m = parse_irradiance_method(a.get("--irradiance"));
+        if (!m) throw std::invalid_argument("--irradiance: unknown method '" + a.get("--irradiance") + "'");
+        o.irradiance.method = *m;
+    }
+    if (a.has("--specular")) {
+        auto m = parse_specular_method(a.get("--specular"));
+        if (!m) throw std::invalid_argument("--specular: unknown method '" + a.get("--specular") + "'");
+        o.specular.method = *m;
+    }
+    if (a.has("--samples")) o.specular.sample_count = positive(a, "--samples", 1 << 20);
+    if (a.has("--size")) o.cube_size = positive(a, "--size", 8192);
+    if (a.has("--levels")) o.specular.levels = positive(a, "--levels", 16);
+    if (a.has("--irradiance-size")) o.irradiance.size = positive(a, "--irradiance-size", 1024);
+    if (a.has("--lut-size")) o.lut.size = positive(a, "--lut-size", 4096);
+    if (a.has("--lut-samples")) o.lut.sample_count = positive(a, "--lut-samples", 1 << 20);
+    if (a.has("--lut-height-correlated")) o.lut.visibility = LutVisibility::height_correlated;
+    if (a.has("--width")) o.sky_width = positive(a, "--width", 16384);
+    if (o.sky_width % 2) throw std::invalid_argument("--width must be even (the height is width / 2)");
     if (a.has("--exposure")) {
         o.exposure = static_cast<float>(cli::parse_double(a.get("--exposure"), "--exposure"));
         if (o.exposure <= 0) throw std::invalid_argument("--exposure must be positive");
     }
+    o.sanitize = a.has("--sanitize");
+    o.force = a.has("--force");
     o.device = a.get("--device");
     o.validation = a.has("--validation");
     o.graph_dot = a.get("--graph-dot");
-    o.sanitize = a.has("--sanitize");
-    if (a.has("--lut-size")) o.lut.size = static_cast<uint32_t>(cli::parse_int(a.get("--lut-size"), "--lut-size", 1, 4096));
-    if (a.has("--lut-samples"))
-        o.lut.sample_count = static_cast<uint32_t>(cli::parse_int(a.get("--lut-samples"), "--lut-samples", 1, 1 << 20));
-    if (a.has("--lut-height-correlated")) o.lut.visibility = LutVisibility::height_correlated;
     return o;
 }
 
@@ -111,6 +132,7 @@ struct Source {
     std::optional<ProceduralSky> sky;
     EnvironmentImage image;
     std::string content_hash;
+    uint32_t width = 0, height = 0;
 };
 
 Result<Source> resolve_environment(const Options& o) {
@@ -121,30 +143,58 @@ Result<Source> resolve_environment(const Options& o) {
         return Error{o.env + ": unknown built-in environment (builtin:sky, builtin:white)"};
     if (source.sky) {
         source.content_hash = source.sky->content_hash();
+        source.width = o.sky_width;
+        source.height = o.sky_width / 2;
         return source;
     }
     auto image = load_environment(o.env, {o.sanitize});
     if (!image) return image.error();
     source.image = std::move(image).value();
     source.content_hash = source.image.content_hash;
+    source.width = source.image.width;
+    source.height = source.image.height;
     if (source.image.sanitized_texels)
         std::fprintf(stderr, "%s: %s: replaced %llu NaN, Inf or negative texels with 0\n", program, o.env.c_str(),
                      static_cast<unsigned long long>(source.image.sanitized_texels));
     return source;
 }
 
-template <class T>
-std::vector<T> read_texels(Context& context, GraphRun& run, ImageHandle image) {
-    auto bytes = read_image(context, *run.transient_image(image), 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-    std::vector<T> texels(bytes.size() / sizeof(T));
-    std::memcpy(texels.data(), bytes.data(), bytes.size());
-    return texels;
+// Everything that decides the outputs, hashed: equal keys mean equal bakes.
+std::string bake_key(const Options& o, const Source& s, uint32_t cube_size, uint32_t levels) {
+    Hash64 h;
+    h.add(FACET_VERSION).add(s.content_hash);
+    const double values[] = {double(s.width), double(s.height), double(cube_size), double(levels),
+                             double(o.exposure), double(int(o.irradiance.method)), double(o.irradiance.size),
+                             double(o.irradiance.source_size), o.irradiance.riemann_step, o.irradiance.blur_sigma,
+                             double(o.irradiance.lowmip_size), double(int(o.specular.method)),
+                             double(o.specular.sample_count), o.specular.automatic_convolve_from,
+                             double(o.lut.size), double(o.lut.sample_count), double(int(o.lut.visibility))};
+    h.add(values, sizeof values);
+    return h.hex();
+}
+
+bool up_to_date(const std::string& dir, const std::string& key) {
+    for (const char* name : bake_output_names())
+        if (!fs::exists(fs::path(dir) / name)) return false;
+    std::ifstream in(fs::path(dir) / "bake.json");
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    return text.find("\"bake_key\": \"" + key + "\"") != std::string::npos;
 }
 
 int bake(const Options& o) {
     const auto start = std::chrono::steady_clock::now();
     auto source = resolve_environment(o);
     if (!source) throw std::runtime_error(source.error().message);
+    const uint32_t cube_size = o.cube_size ? o.cube_size : cube_size_for(source->height);
+    const uint32_t cube_mips = full_mip_count(cube_size);
+    SpecularSettings specular = o.specular;
+    specular.levels = std::min(specular.levels, cube_mips);
+    const std::string key = bake_key(o, *source, cube_size, specular.levels);
+    if (!o.force && up_to_date(o.out_dir, key)) {
+        std::fprintf(stderr, "%s: %s is up to date (same input and settings; --force bakes again)\n", program,
+                     o.out_dir.c_str());
+        return 0;
+    }
     if (Status s = ensure_directory(o.out_dir); !s) throw std::runtime_error(s.error().message);
 
     ContextOptions context_options;
@@ -153,143 +203,111 @@ int bake(const Options& o) {
     auto created = Context::create(context_options);
     if (!created) throw std::runtime_error("cannot start Vulkan: " + created.error().message);
     Context& context = *created.value();
-    const uint32_t width = source->sky ? o.width : source->image.width;
-    const uint32_t height = source->sky ? o.width / 2 : source->image.height;
-    std::fprintf(stderr, "%s: %s, %ux%u, on %s\n", program, o.env.c_str(), width, height,
-                 context.device_name().c_str());
+    std::fprintf(stderr, "%s: %s (%ux%u) -> cube %u^2, %u specular levels, on %s\n", program, o.env.c_str(),
+                 source->width, source->height, cube_size, specular.levels, context.device_name().c_str());
 
     ShaderCompiler compiler;
     ProgramCache programs(context, compiler);
+    Sampler equirect_sampler(context, VK_FILTER_LINEAR, false, true, "equirect sampler");
+    Sampler cube_sampler(context, VK_FILTER_LINEAR, true, false, "cube sampler");
     RenderGraph graph;
-    ImageDesc hdr_desc;
-    hdr_desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    hdr_desc.width = width;
-    hdr_desc.height = height;
-    ImageDesc ldr_desc = hdr_desc;
-    ldr_desc.format = VK_FORMAT_R8G8B8A8_UNORM;
-    auto environment = graph.create_image("environment", hdr_desc);
-    auto preview = graph.create_image("preview", ldr_desc);
+    auto check = [](auto result) {
+        if (!result) throw std::runtime_error(result.error().message);
+        return *result;
+    };
+
+    ImageDesc equirect_desc;
+    equirect_desc.width = source->width;
+    equirect_desc.height = source->height;
+    auto equirect = graph.create_image("environment", equirect_desc);
     std::optional<Buffer> staging;
-    ImageHandle env_out;
     if (source->sky) {
-        auto generated = add_procedural_sky_pass(graph, programs, *source->sky, environment);
-        if (!generated) throw std::runtime_error(generated.error().message);
-        env_out = *generated;
+        equirect = check(add_procedural_sky_pass(graph, programs, *source->sky, equirect));
     } else {
         const std::vector<float>& texels = source->image.rgba;
         staging.emplace(context, texels.size() * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::upload,
                         "environment upload");
         std::memcpy(staging->mapped(), texels.data(), texels.size() * sizeof(float));
         staging->flush();
-        auto staged = graph.import_buffer("environment texels", {staging->handle(), staging->size(),
-                                                                 {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_HOST_BIT,
-                                                                  VK_ACCESS_2_HOST_WRITE_BIT},
-                                                                 {}});
-        env_out = add_upload_pass(graph, "upload environment", staged, environment);
+        auto staged = graph.import_buffer("environment texels",
+                                          {staging->handle(), staging->size(),
+                                           {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_HOST_BIT,
+                                            VK_ACCESS_2_HOST_WRITE_BIT},
+                                           {}});
+        equirect = add_upload_pass(graph, "upload environment", staged, equirect);
     }
-    auto preview_out = add_tonemap_preview_pass(graph, programs, env_out, preview, o.exposure);
-    if (!preview_out) throw std::runtime_error(preview_out.error().message);
+    ImageDesc preview_desc = equirect_desc;
+    preview_desc.format = VK_FORMAT_R8G8B8A8_UNORM;
+    auto preview = check(add_tonemap_preview_pass(graph, programs, equirect,
+                                                  graph.create_image("preview", preview_desc), o.exposure));
+    auto cube = check(add_environment_cube_passes(graph, programs, equirect_sampler, equirect,
+                                                  graph.create_image("environment cube",
+                                                                     environment_cube_desc(cube_size, cube_mips))));
+    auto irradiance = check(add_irradiance_passes(graph, programs, cube_sampler, cube,
+                                                  graph.create_image("irradiance",
+                                                                     environment_cube_desc(o.irradiance.size, 1)),
+                                                  o.irradiance));
+    auto spec = check(add_specular_passes(graph, programs, cube_sampler, cube,
+                                          graph.create_image("specular", environment_cube_desc(cube_size, specular.levels)),
+                                          specular));
     ImageDesc lut_desc;
     lut_desc.width = lut_desc.height = o.lut.size;
-    auto lut = graph.create_image("brdf lut", lut_desc);
-    auto lut_out = add_brdf_lut_passes(graph, programs, o.lut, lut);
-    if (!lut_out) throw std::runtime_error(lut_out.error().message);
+    auto lut = check(add_brdf_lut_passes(graph, programs, o.lut, graph.create_image("brdf lut", lut_desc)));
     const ResourceState readable{VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                                  VK_ACCESS_2_TRANSFER_READ_BIT};
-    graph.export_image(env_out, readable);
-    graph.export_image(*preview_out, readable);
-    graph.export_image(*lut_out, readable);
+    for (ImageHandle h : {equirect, preview, irradiance, spec, lut}) graph.export_image(h, readable);
     CompiledGraph compiled = graph.compile();
     if (!o.graph_dot.empty())
         if (Status s = write_text_file(o.graph_dot, compiled.to_dot()); !s) throw std::runtime_error(s.error().message);
 
+    std::fprintf(stderr, "%s: running %zu passes...\n", program, compiled.passes.size());
     auto run = run_graph(context, compiled);
-    const auto timings = run->timings();
-    auto hdr = read_texels<float>(context, *run, environment);
-    auto ldr = read_texels<uint8_t>(context, *run, preview);
-    auto lut_texels = read_texels<float>(context, *run, lut);
-    size_t bad = 0;
-    for (float v : hdr) bad += !std::isfinite(v) || v < 0;
-    for (float v : lut_texels) bad += !std::isfinite(v);
-    if (bad) throw std::runtime_error(std::to_string(bad) + " values of the bake are NaN, Inf or negative");
+    BakeResults results;
+    results.timings = run->timings();
+    results.environment = read_all(context, *run->transient_image(equirect));
+    results.preview = read_all(context, *run->transient_image(preview));
+    results.irradiance = read_all(context, *run->transient_image(irradiance));
+    results.specular = read_all(context, *run->transient_image(spec));
+    results.lut = read_all(context, *run->transient_image(lut));
 
-    namespace fs = std::filesystem;
-    const std::string names[] = {"environment.exr", "environment.hdr", "environment.png",
-                                 "brdf_lut.exr",    "brdf_lut.png",    "bake.json"};
-    for (const std::string& name : names)
-        if (fs::exists(fs::path(o.out_dir) / name))
-            std::fprintf(stderr, "%s: replacing %s\n", program, (fs::path(o.out_dir) / name).c_str());
-    auto path = [&](const std::string& name) { return (fs::path(o.out_dir) / name).string(); };
-    for (const char* name : {"environment.exr", "environment.hdr"})
-        if (Status s = write_hdr_image(path(name), width, height, hdr); !s) throw std::runtime_error(s.error().message);
-    if (Status s = write_ldr_image(path("environment.png"), width, height, ldr); !s)
-        throw std::runtime_error(s.error().message);
-    if (Status s = write_hdr_image(path("brdf_lut.exr"), o.lut.size, o.lut.size, lut_texels); !s)
-        throw std::runtime_error(s.error().message);
-    // Preview: A, B and E_avg are within [0, 1]; shown linearly, roughness 0 on the top row.
-    std::vector<uint8_t> lut_preview(lut_texels.size());
-    for (uint32_t y = 0; y < o.lut.size; ++y)
-        for (uint32_t x = 0; x < o.lut.size * 4; ++x) {
-            const float v = lut_texels[size_t(y) * o.lut.size * 4 + x];
-            lut_preview[size_t(y) * o.lut.size * 4 + x] =
-                x % 4 == 3 ? 255 : static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
-        }
-    if (Status s = write_ldr_image(path("brdf_lut.png"), o.lut.size, o.lut.size, lut_preview); !s)
-        throw std::runtime_error(s.error().message);
+    BakeDescription d;
+    d.input = o.env;
+    d.content_hash = source->content_hash;
+    d.sanitized_texels = source->image.sanitized_texels;
+    d.bake_key = key;
+    d.device = context.device_name();
+    d.version = FACET_VERSION;
+    d.irradiance = o.irradiance;
+    d.specular = specular;
+    d.lut = o.lut;
+    d.cube_size = cube_size;
+    d.exposure = o.exposure;
+    d.wall_time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (Status s = write_bake_files(o.out_dir, d, results); !s) throw std::runtime_error(s.error().message);
 
-    const double wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    JsonWriter json;
-    json.begin_object()
-        .value("program", program)
-        .value("version", FACET_VERSION)
-        .value("device", context.device_name())
-        .begin_object("input")
-        .value("name", o.env)
-        .value("content_hash", source->content_hash)
-        .value("sanitized_texels", int64_t(source->image.sanitized_texels))
-        .end_object()
-        .begin_object("environment")
-        .value("width", width)
-        .value("height", height)
-        .value("format", "R32G32B32A32_SFLOAT")
-        .value("mapping", "equirectangular: u = atan2(z, x) / 2pi + 0.5, v = asin(y) / pi + 0.5, v = 1 top row")
-        .end_object()
-        .value("preview_exposure", double(o.exposure))
-        .begin_object("brdf_lut")
-        .value("size", o.lut.size)
-        .value("samples", o.lut.sample_count)
-        .value("visibility", o.lut.visibility == LutVisibility::height_correlated ? "smith height-correlated"
-                                                                                : "smith schlick-ggx k = r^2/2")
-        .value("channels", "R = A (scale), G = B (bias), B = E_avg (multiscatter)")
-        .end_object()
-        .begin_array("passes");
-    for (const PassTiming& t : timings) json.begin_object().value("name", t.name).value("gpu_time_ms", std::round(t.time_ms * 1e3) / 1e3).end_object();
-    json.end_array().begin_array("outputs");
-    for (const std::string& name : names)
-        if (name != "bake.json") json.value("", name);
-    json.end_array().value("wall_time_ms", std::round(wall_ms * 1e3) / 1e3).end_object();
-    if (Status s = write_text_file(path("bake.json"), json.str()); !s) throw std::runtime_error(s.error().message);
-
-    for (const PassTiming& t : timings) std::fprintf(stderr, "%s:   pass %-16s %8.2f ms GPU\n", program, t.name.c_str(), t.time_ms);
-    std::fprintf(stderr, "%s: wrote %s/{environment.exr,.hdr,.png, brdf_lut.exr,.png, bake.json} in %.0f ms\n",
-                 program, o.out_dir.c_str(), wall_ms);
+    double gpu_ms = 0;
+    for (const PassTiming& t : results.timings) {
+        std::fprintf(stderr, "%s:   %-40s %9.2f ms GPU\n", program, t.name.c_str(), t.time_ms);
+        gpu_ms += t.time_ms;
+    }
+    std::fprintf(stderr, "%s: wrote %s (%.0f ms GPU, %.0f ms wall)\n", program, o.out_dir.c_str(), gpu_ms,
+                 d.wall_time_ms);
     return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    Options options;
+    std::optional<Options> options;
     try {
-        bool exit_now = false;
-        options = parse(argc, argv, exit_now);
-        if (exit_now) return 0;
+        options = parse(argc, argv);
+        if (!options) return 0;
     } catch (const std::invalid_argument& e) {
         std::fprintf(stderr, "%s: error: %s\n", program, e.what());
         return 2;
     }
     try {
-        return bake(options);
+        return bake(*options);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "%s: error: %s\n", program, e.what());
         return 1;

@@ -60,6 +60,9 @@ TEST(FacetBake, BadArgumentsExitTwoWithAReason) {
     Ran bad_width = run("builtin:sky --out x --width 12abc");
     EXPECT_EQ(bad_width.status, 2);
     EXPECT_NE(bad_width.output.find("--width"), std::string::npos) << bad_width.output;
+    Ran bad_method = run("builtin:sky --out x --specular sorcery");
+    EXPECT_EQ(bad_method.status, 2);
+    EXPECT_NE(bad_method.output.find("sorcery"), std::string::npos) << bad_method.output;
 }
 
 TEST(FacetBake, BadInputsNameTheProblemAndWriteNothing) {
@@ -89,8 +92,8 @@ TEST(FacetBake, BakesTheBuiltInSky) {
     Ran bake = run("builtin:sky --width 128 --validation --out " + out);
     ASSERT_EQ(bake.status, 0) << bake.output;
     EXPECT_EQ(bake.output.find("validation:"), std::string::npos) << bake.output;
-    for (const char* name :
-         {"environment.exr", "environment.hdr", "environment.png", "brdf_lut.exr", "brdf_lut.png", "bake.json"})
+    for (const char* name : {"specular.ktx2", "irradiance.ktx2", "brdf_lut.ktx2", "brdf_lut.png", "environment.exr",
+                             "environment.hdr", "environment.png", "bake.json"})
         EXPECT_TRUE(fs::exists(fs::path(out) / name)) << name;
     std::ifstream json(fs::path(out) / "bake.json");
     std::string text((std::istreambuf_iterator<char>(json)), {});
@@ -99,18 +102,28 @@ TEST(FacetBake, BakesTheBuiltInSky) {
     EXPECT_NE(text.find("\"content_hash\""), std::string::npos) << text;
     size_t files = 0;
     for (auto& e : fs::directory_iterator(out)) files += e.is_regular_file();
-    EXPECT_EQ(files, 6u) << "no temporary files left behind";
+    EXPECT_EQ(files, 8u) << "no temporary files left behind";
+    EXPECT_NE(text.find("\"roughness\": 1"), std::string::npos) << text;
+    EXPECT_NE(text.find("\"bake_key\""), std::string::npos) << text;
 
     Ran again = run("builtin:sky --width 128 --out " + out);
     ASSERT_EQ(again.status, 0) << again.output;
-    EXPECT_NE(again.output.find("replacing"), std::string::npos) << "replacing is said, not silent";
+    EXPECT_NE(again.output.find("up to date"), std::string::npos) << again.output;
+    EXPECT_EQ(again.output.find("running"), std::string::npos) << "an identical bake is skipped";
+
+    Ran other = run("builtin:sky --width 128 --irradiance riemann --out " + out);
+    ASSERT_EQ(other.status, 0) << other.output;
+    EXPECT_NE(other.output.find("replacing"), std::string::npos) << "replacing is said, not silent";
+    Ran forced = run("builtin:sky --width 128 --irradiance riemann --force --out " + out);
+    ASSERT_EQ(forced.status, 0) << forced.output;
+    EXPECT_NE(forced.output.find("running"), std::string::npos) << forced.output;
 }
 
 TEST(FacetBake, BakesAnEnvironmentFile) {
     TempDir dir;
     const std::string out = (dir.path / "studio").string();
     const std::string env = std::string(FACET_SHARED_DATA_DIR) + "/env/studio_small_03_1k.hdr";
-    Ran bake = run(env + " --lut-size 32 --lut-samples 256 --validation --out " + out);
+    Ran bake = run(env + " --size 32 --lut-size 32 --lut-samples 256 --validation --out " + out);
     ASSERT_EQ(bake.status, 0) << bake.output;
     EXPECT_NE(bake.output.find("1024x512"), std::string::npos) << bake.output;
     EXPECT_EQ(bake.output.find("validation:"), std::string::npos) << bake.output;
@@ -118,6 +131,7 @@ TEST(FacetBake, BakesAnEnvironmentFile) {
     std::string text((std::istreambuf_iterator<char>(json)), {});
     EXPECT_NE(text.find("\"upload environment\""), std::string::npos) << text;
     EXPECT_NE(text.find("\"samples\": 256"), std::string::npos) << text;
+    EXPECT_NE(text.find("\"size\": 32"), std::string::npos) << text;
 }
 
 }  // namespace

@@ -1,0 +1,49 @@
+#pragma once
+// facet-bake's outputs (design.md): reading the baked images back and writing the KTX2
+// files, previews and bake.json, each atomically.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/result.h"
+#include "graph/graph_run.h"
+#include "ibl/brdf_lut.h"
+#include "ibl/irradiance.h"
+#include "ibl/specular.h"
+
+namespace facet {
+
+class Context;
+class Image;
+
+// Every level and layer of an image, as stored (RGBA32F or RGBA8).
+struct ImageTexels {
+    ImageDesc desc;
+    std::vector<std::vector<std::byte>> levels;  // [mip]: layers one after another
+};
+ImageTexels read_all(Context& context, const Image& image);
+
+struct BakeResults {
+    std::vector<PassTiming> timings;
+    ImageTexels environment, preview, irradiance, specular, lut;
+};
+
+struct BakeDescription {
+    std::string input, content_hash, bake_key, device, version;
+    uint64_t sanitized_texels = 0;
+    IrradianceSettings irradiance;
+    SpecularSettings specular;
+    BrdfLutSettings lut;
+    uint32_t cube_size = 0;
+    float exposure = 1;
+    double wall_time_ms = 0;
+};
+
+// The files a finished bake leaves in its directory.
+const std::vector<const char*>& bake_output_names();
+
+// Writes all outputs; fails (naming the file) on the first that cannot be written, or
+// when any baked value is NaN, Inf or negative.
+Status write_bake_files(const std::string& dir, const BakeDescription& d, const BakeResults& r);
+
+}  // namespace facet
