@@ -6,8 +6,11 @@
 
 #include <array>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+
+#include "io/ktx2.h"
 
 namespace {
 
@@ -132,6 +135,38 @@ TEST(FacetBake, BakesAnEnvironmentFile) {
     EXPECT_NE(text.find("\"upload environment\""), std::string::npos) << text;
     EXPECT_NE(text.find("\"samples\": 256"), std::string::npos) << text;
     EXPECT_NE(text.find("\"size\": 32"), std::string::npos) << text;
+}
+
+// The white furnace through the whole program: every specular level and the irradiance,
+// as written in the KTX2 files, are 1 (RGBA16F keeps 1 exactly; bound 1e-3).
+TEST(FacetBake, WhiteFurnaceThroughTheFiles) {
+    TempDir dir;
+    const std::string out = (dir.path / "white").string();
+    Ran bake = run("builtin:white --width 128 --levels 5 --lut-size 16 --out " + out);
+    ASSERT_EQ(bake.status, 0) << bake.output;
+    auto specular = facet::read_ktx2((fs::path(out) / "specular.ktx2").string());
+    ASSERT_TRUE(specular) << specular.error().message;
+    EXPECT_EQ(specular->faces, 6u);
+    EXPECT_EQ(specular->levels, 5u);
+    EXPECT_EQ(specular->width, 32u);
+    EXPECT_EQ(specular->format, VK_FORMAT_R16G16B16A16_SFLOAT);
+    auto irradiance = facet::read_ktx2((fs::path(out) / "irradiance.ktx2").string());
+    ASSERT_TRUE(irradiance) << irradiance.error().message;
+    EXPECT_EQ(irradiance->faces, 6u);
+    for (const facet::Ktx2Image* image : {&specular.value(), &irradiance.value()})
+        for (uint32_t l = 0; l < image->levels; ++l) {
+            const auto& data = image->level_data[l];
+            for (size_t i = 0; i + 1 < data.size(); i += 2) {
+                if ((i / 2) % 4 == 3) continue;  // alpha
+                uint16_t h;
+                std::memcpy(&h, data.data() + i, 2);
+                ASSERT_NEAR(facet::half_to_float(h), 1.0f, 1e-3f) << "level " << l;
+            }
+        }
+    auto lut = facet::read_ktx2((fs::path(out) / "brdf_lut.ktx2").string());
+    ASSERT_TRUE(lut) << lut.error().message;
+    EXPECT_EQ(lut->faces, 1u);
+    EXPECT_EQ(lut->width, 16u);
 }
 
 }  // namespace
