@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "gpu/resources.h"
+#include "ibl/cube_texel_list.h"
 #include "graph/graph_run.h"
 #include "shader/program_cache.h"
 
@@ -10,16 +11,11 @@ namespace facet {
 
 namespace {
 
-constexpr VkImageViewType array_view = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
-
-void dispatch_cube(PassContext& pc, uint32_t n) { vkCmdDispatch(pc.cmd(), group_count(n, 8), group_count(n, 8), 6); }
+constexpr VkImageViewType array_view = cube_array_view;
 
 // convolve and blur: list the texels of a small level, then convolve with the list.
 Result<ImageHandle> add_texel_convolution(RenderGraph& graph, ProgramCache& programs, ImageHandle environment,
                                           ImageHandle irradiance, const IrradianceSettings& s) {
-    const VkDescriptorType list_bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
-    auto list = programs.compute("ibl/cube_texels.comp", list_bindings, sizeof(uint32_t));
-    if (!list) return list.error();
     const VkDescriptorType conv_bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
     struct Params {
         uint32_t texel_count, gaussian;
@@ -27,33 +23,18 @@ Result<ImageHandle> add_texel_convolution(RenderGraph& graph, ProgramCache& prog
     };
     auto convolve = programs.compute("ibl/irradiance_convolve.comp", conv_bindings, sizeof(Params));
     if (!convolve) return convolve.error();
-
     const ImageDesc& env = graph.resource(environment).image_desc;
-    const uint32_t level = level_at_most(env.width, env.mip_levels, s.source_size);
-    const uint32_t m = env.mip_width(level);
-    const uint32_t count = 6 * m * m;
-    auto texels = graph.create_buffer("irradiance source texels", {VkDeviceSize(count) * 32});
-    BufferHandle listed;
-    const uint32_t block = 1u << level;
-    graph.add_compute_pass("irradiance texel list", [&](PassBuilder& b) {
-        b.read_storage(environment, ImageRange::mip(0));
-        listed = b.write(texels);
-    }, [p = *list, environment, texels, block, m](PassContext& pc) {
-        p->bind(pc.cmd());
-        const DescriptorWrite writes[] = {
-            DescriptorWrite::storage_image(pc.view(environment, ImageRange::mip(0), array_view)),
-            DescriptorWrite::storage_buffer(pc.buffer(texels))};
-        p->push_descriptors(pc.cmd(), writes);
-        p->push_constants(pc.cmd(), block);
-        dispatch_cube(pc, m);
-    });
+    auto list = add_cube_texel_list_pass(graph, programs, environment,
+                                         level_at_most(env.width, env.mip_levels, s.source_size),
+                                         "irradiance texel list");
+    if (!list) return list.error();
     const bool blur = s.method == IrradianceMethod::blur;
-    const Params params{count, blur ? 1u : 0u, s.blur_sigma};
+    const Params params{list->count, blur ? 1u : 0u, s.blur_sigma};
     ImageHandle written;
     graph.add_compute_pass(blur ? "irradiance blur" : "irradiance convolve", [&](PassBuilder& b) {
-        b.read(listed);
+        b.read(list->buffer);
         written = b.write_storage(irradiance);
-    }, [p = *convolve, texels, irradiance, params, n = s.size](PassContext& pc) {
+    }, [p = *convolve, texels = list->buffer, irradiance, params, n = s.size](PassContext& pc) {
         p->bind(pc.cmd());
         const DescriptorWrite writes[] = {DescriptorWrite::storage_buffer(pc.buffer(texels)),
                                           DescriptorWrite::storage_image(pc.view(irradiance, {}, array_view))};

@@ -4,6 +4,7 @@
 
 #include "gpu/resources.h"
 #include "graph/graph_run.h"
+#include "ibl/cube_texel_list.h"
 #include "ibl/irradiance.h"
 #include "shader/program_cache.h"
 
@@ -11,9 +12,7 @@ namespace facet {
 
 namespace {
 
-constexpr VkImageViewType array_view = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
-
-void dispatch_cube(PassContext& pc, uint32_t n) { vkCmdDispatch(pc.cmd(), group_count(n, 8), group_count(n, 8), 6); }
+constexpr VkImageViewType array_view = cube_array_view;
 
 }  // namespace
 
@@ -67,7 +66,6 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
 
     const VkDescriptorType storage2[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
     const VkDescriptorType sampled[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
-    const VkDescriptorType list_bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
     const VkDescriptorType conv_bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
     auto copy = programs.compute("ibl/cube_copy_level.comp", storage2, 0);
     if (!copy) return copy.error();
@@ -92,8 +90,6 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
         const uint32_t n = out.mip_width(m);
         const std::string name = "specular level " + std::to_string(m) + " (" + specular_method_name(method) + ")";
         if (method == SpecularMethod::convolve) {
-            auto list = programs.compute("ibl/cube_texels.comp", list_bindings, sizeof(uint32_t));
-            if (!list) return list.error();
             struct Params {
                 uint32_t texel_count;
                 float roughness;
@@ -101,25 +97,12 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
             auto conv = programs.compute("ibl/specular_convolve.comp", conv_bindings, sizeof(Params));
             if (!conv) return conv.error();
             const uint32_t level = level_at_most(env.width, env.mip_levels, convolve_source_size(r));
-            const uint32_t source = env.mip_width(level);
-            const Params params{6 * source * source, r};
-            auto texels = graph.create_buffer("specular texels " + std::to_string(m),
-                                              {VkDeviceSize(params.texel_count) * 32});
-            BufferHandle listed;
-            graph.add_compute_pass(name + " texels", [&](PassBuilder& b) {
-                b.read_storage(environment, ImageRange::mip(0));
-                listed = b.write(texels);
-            }, [p = *list, environment, texels, block = 1u << level, source](PassContext& pc) {
-                p->bind(pc.cmd());
-                const DescriptorWrite writes[] = {
-                    DescriptorWrite::storage_image(pc.view(environment, ImageRange::mip(0), array_view)),
-                    DescriptorWrite::storage_buffer(pc.buffer(texels))};
-                p->push_descriptors(pc.cmd(), writes);
-                p->push_constants(pc.cmd(), block);
-                dispatch_cube(pc, source);
-            });
+            auto list = add_cube_texel_list_pass(graph, programs, environment, level, name + " texels");
+            if (!list) return list.error();
+            const Params params{list->count, r};
+            const BufferHandle texels = list->buffer;
             graph.add_compute_pass(name, [&](PassBuilder& b) {
-                b.read(listed);
+                b.read(texels);
                 current = b.write_storage(current, ImageRange::mip(m));
             }, [p = *conv, texels, specular, m, n, params](PassContext& pc) {
                 p->bind(pc.cmd());

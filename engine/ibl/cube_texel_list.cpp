@@ -1,0 +1,35 @@
+#include "ibl/cube_texel_list.h"
+
+#include "graph/graph_run.h"
+#include "shader/program_cache.h"
+
+namespace facet {
+
+void dispatch_cube(PassContext& pc, uint32_t n) { vkCmdDispatch(pc.cmd(), group_count(n, 8), group_count(n, 8), 6); }
+
+Result<CubeTexelList> add_cube_texel_list_pass(RenderGraph& graph, ProgramCache& programs, ImageHandle environment,
+                                               uint32_t level, const std::string& name) {
+    const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+    auto program = programs.compute("ibl/cube_texels.comp", bindings, sizeof(uint32_t));
+    if (!program) return program.error();
+    const ImageDesc& env = graph.resource(environment).image_desc;
+    const uint32_t face = env.mip_width(level);
+    CubeTexelList list;
+    list.count = 6 * face * face;
+    auto texels = graph.create_buffer(name, {VkDeviceSize(list.count) * 32});
+    graph.add_compute_pass(name, [&](PassBuilder& b) {
+        b.read_storage(environment, ImageRange::mip(0));
+        list.buffer = b.write(texels);
+    }, [p = *program, environment, texels, block = 1u << level, face](PassContext& pc) {
+        p->bind(pc.cmd());
+        const DescriptorWrite writes[] = {
+            DescriptorWrite::storage_image(pc.view(environment, ImageRange::mip(0), cube_array_view)),
+            DescriptorWrite::storage_buffer(pc.buffer(texels))};
+        p->push_descriptors(pc.cmd(), writes);
+        p->push_constants(pc.cmd(), block);
+        dispatch_cube(pc, face);
+    });
+    return list;
+}
+
+}  // namespace facet

@@ -1,0 +1,30 @@
+#pragma once
+// The texel list the convolutions (irradiance, specular) sum over: one entry per texel
+// of a coarse level of the environment cube, built from its level-0 children
+// (shaders/ibl/cube_texels.comp: radiance-weighted direction, cap spread, radiance x
+// solid angle, solid angle). Shared helpers for passes that write cube levels.
+#include <cstdint>
+
+#include "core/result.h"
+#include "graph/render_graph.h"
+
+namespace facet {
+
+class PassContext;
+class ProgramCache;
+
+struct CubeTexelList {
+    BufferHandle buffer;  // 2 x vec4 per entry
+    uint32_t count = 0;   // 6 x face^2
+};
+
+// Lists the texels of `level` of `environment` (a cube with its mip chain).
+Result<CubeTexelList> add_cube_texel_list_pass(RenderGraph& graph, ProgramCache& programs, ImageHandle environment,
+                                               uint32_t level, const std::string& name);
+
+// 8x8 groups over every face of an n x n level.
+void dispatch_cube(PassContext& pc, uint32_t n);
+
+constexpr VkImageViewType cube_array_view = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+
+}  // namespace facet
