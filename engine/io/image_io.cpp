@@ -51,6 +51,9 @@ Status write_hdr_image(const std::string& path, uint32_t width, uint32_t height,
         }
         OIIO::ImageSpec spec(int(width), int(height), 4, OIIO::TypeDesc::FLOAT);
         spec.attribute("compression", "zip");
+        // A fixed capture date: the same texels give the same file (reproducible bakes);
+        // when and how a file was made is recorded in its .json beside it.
+        spec.attribute("DateTime", "1970:01:01 00:00:00");
         return write_with_oiio(path, temp, spec, rgba.data());
     });
 }
