@@ -167,6 +167,29 @@ Status write_bake_files(const std::string& dir, const BakeDescription& d, const 
     for (size_t i = 0; i < lut.size(); ++i)
         lut_png[i] = i % 4 == 3 ? 255 : static_cast<uint8_t>(std::lround(std::clamp(lut[i], 0.0f, 1.0f) * 255.0f));
     if (Status s = write_ldr_image(path("brdf_lut.png"), r.lut.desc.width, r.lut.desc.height, lut_png); !s) return s;
+    if (r.sh9.empty() && fs::exists(path("sh9.json"))) {
+        std::fprintf(stderr, "facet-bake: removing %s (this bake does not use spherical harmonics)\n",
+                     path("sh9.json").c_str());
+        fs::remove(path("sh9.json"), ec);
+    }
+    if (!r.sh9.empty()) {
+        JsonWriter j;
+        j.begin_object()
+            .value("basis", "real SH, bands 0-2, order (0,0) (1,-1) (1,0) (1,1) (2,-2) (2,-1) (2,0) (2,1) (2,2); "
+                            "Y_1,-1 = 0.4886 y, Y_10 = 0.4886 z, Y_11 = 0.4886 x")
+            .value("quantity", "radiance projections L_i = integral L Y_i dw (before the cosine kernel)")
+            .value("irradiance", "E(n)/pi = sum_i A_l w_l L_i Y_i(n) / pi, A = (pi, 2pi/3, pi/4)")
+            .value("window_h", double(r.sh9[9 * 4]))
+            .value("window", "w_l = (1 + cos(pi l / (2 h))) / 2; h = 0 means no window")
+            .begin_array("coefficients");
+        for (int i = 0; i < 9; ++i) {
+            j.begin_array();
+            for (int c = 0; c < 3; ++c) j.value("", double(r.sh9[i * 4 + c]));
+            j.end_array();
+        }
+        j.end_array().end_object();
+        if (Status s = write_text_file(path("sh9.json"), j.str()); !s) return s;
+    }
     // bake.json last: its presence with a bake key marks a complete bake.
     return write_text_file(path("bake.json"), bake_json(d, r));
 }

@@ -26,6 +26,7 @@ ImageTexels read_all(Context& context, const Image& image);
 struct BakeResults {
     std::vector<PassTiming> timings;
     ImageTexels environment, preview, irradiance, specular, lut;
+    std::vector<float> sh9;  // sh9 method: 10 vec4 (L_0..L_8 RGB, then the window h)
 };
 
 struct BakeDescription {

@@ -15,6 +15,7 @@
 #include "cli.h"
 #include "core/hash.h"
 #include "gpu/context.h"
+#include "gpu/transfer.h"
 #include "graph/compiled_graph.h"
 #include "graph/graph_run.h"
 #include "graph/transfer_passes.h"
@@ -55,7 +56,8 @@ cli::Parser make_parser() {
                   "brdf_lut.png, environment.exr/.hdr/.png and bake.json. A bake whose bake.json\n"
                   "records the same input and settings is skipped (--force redoes it).");
     p.option("--out", "DIR", "output directory (created if missing)")
-        .option("--irradiance", "METHOD", "convolve (default), riemann, blur, lowmip")
+        .option("--irradiance", "METHOD", "convolve (default), riemann, sh9, blur, lowmip")
+        .flag("--sh9-no-window", "sh9: keep the raw coefficients (may ring below 0 on a sun)")
         .option("--specular", "METHOD", "automatic (default), importance, filtered, convolve, mips")
         .option("--samples", "N", "GGX samples per texel for importance/filtered levels (default 256)")
         .option("--size", "N", "cube face size (default: input height / 2)")
@@ -119,6 +121,7 @@ std::optional<Options> parse(int argc, char** argv) {
         o.exposure = static_cast<float>(cli::parse_double(a.get("--exposure"), "--exposure"));
         if (o.exposure <= 0) throw std::invalid_argument("--exposure must be positive");
     }
+    if (a.has("--sh9-no-window")) o.irradiance.sh9_windowing = false;
     o.sanitize = a.has("--sanitize");
     o.force = a.has("--force");
     o.device = a.get("--device");
@@ -166,7 +169,7 @@ std::string bake_key(const Options& o, const Source& s, uint32_t cube_size, uint
     const double values[] = {double(s.width), double(s.height), double(cube_size), double(levels),
                              double(o.exposure), double(int(o.irradiance.method)), double(o.irradiance.size),
                              double(o.irradiance.source_size), o.irradiance.riemann_step, o.irradiance.blur_sigma,
-                             double(o.irradiance.lowmip_size), double(int(o.specular.method)),
+                             double(o.irradiance.lowmip_size), double(o.irradiance.sh9_windowing), double(int(o.specular.method)),
                              double(o.specular.sample_count), o.specular.automatic_convolve_from,
                              double(o.lut.size), double(o.lut.sample_count), double(int(o.lut.visibility))};
     h.add(values, sizeof values);
@@ -243,10 +246,11 @@ int bake(const Options& o) {
     auto cube = check(add_environment_cube_passes(graph, programs, equirect_sampler, equirect,
                                                   graph.create_image("environment cube",
                                                                      environment_cube_desc(cube_size, cube_mips))));
+    BufferHandle sh9;
     auto irradiance = check(add_irradiance_passes(graph, programs, cube_sampler, cube,
                                                   graph.create_image("irradiance",
                                                                      environment_cube_desc(o.irradiance.size, 1)),
-                                                  o.irradiance));
+                                                  o.irradiance, &sh9));
     auto spec = check(add_specular_passes(graph, programs, cube_sampler, cube,
                                           graph.create_image("specular", environment_cube_desc(cube_size, specular.levels)),
                                           specular));
@@ -256,6 +260,9 @@ int bake(const Options& o) {
     const ResourceState readable{VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                                  VK_ACCESS_2_TRANSFER_READ_BIT};
     for (ImageHandle h : {equirect, preview, irradiance, spec, lut}) graph.export_image(h, readable);
+    if (sh9.valid())
+        graph.export_buffer(sh9, {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                                  VK_ACCESS_2_TRANSFER_READ_BIT});
     CompiledGraph compiled = graph.compile();
     if (!o.graph_dot.empty())
         if (Status s = write_text_file(o.graph_dot, compiled.to_dot()); !s) throw std::runtime_error(s.error().message);
@@ -269,6 +276,11 @@ int bake(const Options& o) {
     results.irradiance = read_all(context, *run->transient_image(irradiance));
     results.specular = read_all(context, *run->transient_image(spec));
     results.lut = read_all(context, *run->transient_image(lut));
+    if (sh9.valid()) {
+        auto bytes = read_buffer(context, *run->transient_buffer(sh9));
+        results.sh9.resize(bytes.size() / sizeof(float));
+        std::memcpy(results.sh9.data(), bytes.data(), bytes.size());
+    }
 
     BakeDescription d;
     d.input = o.env;

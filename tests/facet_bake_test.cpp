@@ -157,6 +157,20 @@ TEST(FacetBake, BakesAreDeterministic) {
     }
 }
 
+TEST(FacetBake, Sh9WritesItsCoefficients) {
+    TempDir dir;
+    const std::string out = (dir.path / "sh").string();
+    Ran bake = run("builtin:sky --width 64 --lut-size 8 --irradiance sh9 --out " + out);
+    ASSERT_EQ(bake.status, 0) << bake.output;
+    const std::string json = file_bytes(fs::path(out) / "sh9.json");
+    EXPECT_NE(json.find("\"coefficients\""), std::string::npos) << json;
+    EXPECT_NE(json.find("\"window_h\""), std::string::npos) << json;
+    Ran other = run("builtin:sky --width 64 --lut-size 8 --out " + out);
+    ASSERT_EQ(other.status, 0) << other.output;
+    EXPECT_FALSE(fs::exists(fs::path(out) / "sh9.json")) << "a stale sh9.json is removed, and said";
+    EXPECT_NE(other.output.find("removing"), std::string::npos) << other.output;
+}
+
 // The white furnace through the whole program: every specular level and the irradiance,
 // as written in the KTX2 files, are 1 (RGBA16F keeps 1 exactly; bound 1e-3).
 TEST(FacetBake, WhiteFurnaceThroughTheFiles) {

@@ -45,6 +45,65 @@ Result<ImageHandle> add_texel_convolution(RenderGraph& graph, ProgramCache& prog
     return written;
 }
 
+// sh9: project the texel list on 9 SH functions, reduce, choose the window, evaluate.
+Result<ImageHandle> add_sh9(RenderGraph& graph, ProgramCache& programs, ImageHandle environment,
+                            ImageHandle irradiance, const IrradianceSettings& s, BufferHandle* coefficients_out) {
+    const VkDescriptorType two_buffers[] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+    const VkDescriptorType buffer_image[] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
+    auto project = programs.compute("ibl/sh9_project.comp", two_buffers, sizeof(uint32_t));
+    if (!project) return project.error();
+    struct ReduceParams {
+        uint32_t group_count, windowing;
+    };
+    auto reduce = programs.compute("ibl/sh9_reduce.comp", two_buffers, sizeof(ReduceParams));
+    if (!reduce) return reduce.error();
+    auto evaluate = programs.compute("ibl/sh9_irradiance.comp", buffer_image, 0);
+    if (!evaluate) return evaluate.error();
+    const ImageDesc& env = graph.resource(environment).image_desc;
+    auto list = add_cube_texel_list_pass(graph, programs, environment,
+                                         level_at_most(env.width, env.mip_levels, s.source_size), "sh9 texel list");
+    if (!list) return list.error();
+    const uint32_t groups = group_count(list->count, 64);
+    auto partials = graph.create_buffer("sh9 partial sums", {VkDeviceSize(groups) * 9 * 16});
+    auto coefficients = graph.create_buffer("sh9 coefficients", {10 * 16});
+    graph.add_compute_pass("sh9 project", [&](PassBuilder& b) {
+        b.read(list->buffer);
+        partials = b.write(partials);
+    }, [p = *project, texels = list->buffer, partials, count = list->count, groups](PassContext& pc) {
+        p->bind(pc.cmd());
+        const DescriptorWrite writes[] = {DescriptorWrite::storage_buffer(pc.buffer(texels)),
+                                          DescriptorWrite::storage_buffer(pc.buffer(partials))};
+        p->push_descriptors(pc.cmd(), writes);
+        p->push_constants(pc.cmd(), count);
+        vkCmdDispatch(pc.cmd(), groups, 1, 1);
+    });
+    const ReduceParams params{groups, s.sh9_windowing ? 1u : 0u};
+    graph.add_compute_pass("sh9 reduce and window", [&](PassBuilder& b) {
+        b.read(partials);
+        coefficients = b.write(coefficients);
+    }, [p = *reduce, partials, coefficients, params](PassContext& pc) {
+        p->bind(pc.cmd());
+        const DescriptorWrite writes[] = {DescriptorWrite::storage_buffer(pc.buffer(partials)),
+                                          DescriptorWrite::storage_buffer(pc.buffer(coefficients))};
+        p->push_descriptors(pc.cmd(), writes);
+        p->push_constants(pc.cmd(), params);
+        vkCmdDispatch(pc.cmd(), 1, 1, 1);
+    });
+    ImageHandle written;
+    graph.add_compute_pass("sh9 irradiance", [&](PassBuilder& b) {
+        b.read(coefficients);
+        written = b.write_storage(irradiance);
+    }, [p = *evaluate, coefficients, irradiance, n = s.size](PassContext& pc) {
+        p->bind(pc.cmd());
+        const DescriptorWrite writes[] = {DescriptorWrite::storage_buffer(pc.buffer(coefficients)),
+                                          DescriptorWrite::storage_image(pc.view(irradiance, {}, array_view))};
+        p->push_descriptors(pc.cmd(), writes);
+        dispatch_cube(pc, n);
+    });
+    if (coefficients_out) *coefficients_out = coefficients;
+    return written;
+}
+
 // riemann and lowmip: sample the environment cube through a sampler.
 Result<ImageHandle> add_cube_sampling(RenderGraph& graph, ProgramCache& programs, const Sampler& sampler,
                                       ImageHandle environment, ImageHandle irradiance, const IrradianceSettings& s) {
@@ -79,6 +138,7 @@ const char* irradiance_method_name(IrradianceMethod method) {
     switch (method) {
         case IrradianceMethod::convolve: return "convolve";
         case IrradianceMethod::riemann: return "riemann";
+        case IrradianceMethod::sh9: return "sh9";
         case IrradianceMethod::blur: return "blur";
         case IrradianceMethod::lowmip: return "lowmip";
     }
@@ -86,7 +146,8 @@ const char* irradiance_method_name(IrradianceMethod method) {
 }
 
 std::optional<IrradianceMethod> parse_irradiance_method(const std::string& name) {
-    for (auto m : {IrradianceMethod::convolve, IrradianceMethod::riemann, IrradianceMethod::blur, IrradianceMethod::lowmip})
+    for (auto m : {IrradianceMethod::convolve, IrradianceMethod::riemann, IrradianceMethod::sh9, IrradianceMethod::blur,
+                   IrradianceMethod::lowmip})
         if (name == irradiance_method_name(m)) return m;
     return std::nullopt;
 }
@@ -99,7 +160,7 @@ uint32_t level_at_most(uint32_t size, uint32_t mip_levels, uint32_t max_face) {
 
 Result<ImageHandle> add_irradiance_passes(RenderGraph& graph, ProgramCache& programs, const Sampler& cube_sampler,
                                           ImageHandle environment, ImageHandle irradiance,
-                                          const IrradianceSettings& settings) {
+                                          const IrradianceSettings& settings, BufferHandle* sh9_coefficients) {
     const ImageDesc& out = graph.resource(irradiance).image_desc;
     if (!out.cube || out.width != settings.size)
         return Error{"irradiance: the output must be a cube of face size " + std::to_string(settings.size)};
@@ -110,6 +171,8 @@ Result<ImageHandle> add_irradiance_passes(RenderGraph& graph, ProgramCache& prog
         case IrradianceMethod::riemann:
         case IrradianceMethod::lowmip:
             return add_cube_sampling(graph, programs, cube_sampler, environment, irradiance, settings);
+        case IrradianceMethod::sh9:
+            return add_sh9(graph, programs, environment, irradiance, settings, sh9_coefficients);
     }
     return Error{"irradiance: unknown method"};
 }
