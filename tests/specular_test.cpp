@@ -104,7 +104,7 @@ TEST(SpecularLevels, RoughnessPerLevelAndMethodChoice) {
     EXPECT_EQ(specular_level_method(s, 0.2f), SpecularMethod::filtered);
     EXPECT_EQ(specular_level_method(s, 0.6f), SpecularMethod::convolve);
     EXPECT_EQ(convolve_source_size(1.0f), 8u);
-    EXPECT_EQ(convolve_source_size(0.4f), 32u);
+    EXPECT_EQ(convolve_source_size(0.4f), 16u);
 }
 
 TEST_F(SpecularTest, WhiteFurnaceIsOneOnEveryLevelForEveryMethod) {
@@ -130,9 +130,9 @@ TEST_F(SpecularTest, LevelsOnASunnySky) {
         SpecularMethod method;
         double bound;
     };
-    // automatic meets the 3% per level. The others show where they break on a sun:
-    // measured filtered 14-23% (256 samples), importance up to 320% (fireflies), mips up to
-    // 1840% (a box filter is not a GGX lobe).
+    // automatic meets the 3% per level. The others show where they break on a sun
+    // (the printout has the figures): filtered and importance sampling stay noisy at
+    // 1024 samples (fireflies), mips are a box filter, not a GGX lobe.
     for (Case c : {Case{SpecularMethod::automatic, 0.03}, Case{SpecularMethod::filtered, 0.3},
                    Case{SpecularMethod::importance, 5.0}, Case{SpecularMethod::mips, 25.0}}) {
         CubeLevels spec = bake(sky, with(c.method, levels));
@@ -150,8 +150,8 @@ TEST_F(SpecularTest, LevelsOnASunnySky) {
 // The default settings at bake scale: a 512x256 sun sky (cube 128^2, 6 levels, roughness
 // 0, 0.2, ... 1), each level measured at 1500 random directions plus 500 within 10 degrees
 // of the sun, against the truth over every texel. The target is 3% per level.
-// Measured: level 1 (roughness 0.2, filtered importance sampling, 256 samples) 4.8%,
-// above the target; the convolve levels 0.8-1.3%. Bounds: what is achieved.
+// Measured: level 1 (roughness 0.2, filtered importance sampling, 1024 samples) 2.6%,
+// the convolve levels 0.8-1.5%: every level within the target.
 TEST_F(SpecularTest, DefaultsAtBakeScale) {
     const Equirect sky = sun_sky(512, 256, 5e4, 2.5, 30, 40);
     SpecularSettings s;  // defaults: automatic, 6 levels
@@ -171,7 +171,7 @@ TEST_F(SpecularTest, DefaultsAtBakeScale) {
         for (double& v : d) v /= len;
         directions.push_back(d);
     }
-    const double bounds[] = {0, 0.06, 0.03, 0.03, 0.03, 0.03};
+    const double bounds[] = {0, 0.03, 0.03, 0.03, 0.03, 0.03};
     const TexelTable table(sky);
     for (uint32_t l = 1; l < 6; ++l) {
         const uint32_t n = 128 >> l;

@@ -29,7 +29,7 @@ std::optional<SpecularMethod> parse_specular_method(const std::string& name);
 struct SpecularSettings {
     SpecularMethod method = SpecularMethod::automatic;
     uint32_t levels = 6;               // roughness of level m = m / (levels - 1)
-    uint32_t sample_count = 256;       // importance / filtered
+    uint32_t sample_count = 1024;      // importance / filtered
     float automatic_convolve_from = 0.3f;  // automatic: convolve at and above this roughness
 };
 
@@ -38,7 +38,8 @@ std::vector<float> specular_level_roughness(uint32_t levels);
 // The method a level actually uses.
 SpecularMethod specular_level_method(const SpecularSettings& settings, float roughness);
 // Face size of the source level the convolve method reads for a roughness: texels of
-// about an eighth of the GGX lobe's width, between 8 and 64.
+// about a quarter of the GGX lobe's width, between 8 and 64 (the texel list keeps each
+// block's radiance-weighted direction, so a sun stays where it is).
 uint32_t convolve_source_size(float roughness);
 
 // `environment`: the environment cube with its full mip chain (sampled through
