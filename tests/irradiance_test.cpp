@@ -92,7 +92,7 @@ TEST_F(IrradianceTest, WhiteFurnaceIsOneForEveryMethod) {
 }
 
 // A sun of 5e4, 2.5 degrees wide. The target for the default is relRMSE <= 0.5%;
-// this measures 0.75% (0.91% from a 512x256 input), while the same sky without its sun
+// this measures 0.66% (from a 16^2 source level), while the same sky without its sun
 // gives 0.012%: the remaining error is in how the sun reaches the cube, not in the
 // convolution (a finer source level does not change it). Bound: what is achieved, so a
 // regression fails; the 0.5% target stays open.

@@ -27,7 +27,7 @@ std::optional<IrradianceMethod> parse_irradiance_method(const std::string& name)
 struct IrradianceSettings {
     IrradianceMethod method = IrradianceMethod::convolve;
     uint32_t size = 32;          // output face size
-    uint32_t source_size = 32;   // convolve/blur: largest source face size used
+    uint32_t source_size = 16;   // convolve/blur: largest source face size used
     float riemann_step = 0.025f; // riemann: step in radians (the thesis' value)
     float blur_sigma = 0.5f;     // blur: Gaussian width in radians
     uint32_t lowmip_size = 2;    // lowmip: face size of the level sampled
