@@ -164,6 +164,23 @@ TEST_F(IrradianceTest, Sh9RingsOnASunAndTheWindowStopsIt) {
     EXPECT_TRUE(raw_err.finite && windowed_err.finite);
 }
 
+// One hot texel (1e5) in a black sky and a 3:1 input: every method stays finite and
+// non-negative; convolve matches the truth for the hot texel.
+TEST_F(IrradianceTest, HotTexelAndOddAspect) {
+    Equirect hot = uniform_sky(128, 64, 0.0f);
+    for (int c = 0; c < 3; ++c) hot.rgba[(size_t(20) * 128 + 37) * 4 + c] = 1e5f;
+    Equirect wide = uniform_sky(96, 32, 0.25f);
+    for (auto m : {IrradianceMethod::convolve, IrradianceMethod::riemann, IrradianceMethod::sh9,
+                   IrradianceMethod::blur, IrradianceMethod::lowmip})
+        for (const Equirect* e : {&hot, &wide}) {
+            CubeLevels irr = bake(*e, with(m, 8));
+            for (float v : irr.levels[0]) ASSERT_TRUE(std::isfinite(v) && v >= 0) << irradiance_method_name(m);
+        }
+    const Errors err = measure(hot, bake(hot, IrradianceSettings{}));
+    std::printf("hot texel, convolve: relRMSE %.3f%%\n", 100 * err.rel_rmse);
+    EXPECT_LE(err.rel_rmse, 0.02);
+}
+
 TEST_F(IrradianceTest, TinyInputsAndBlackSkiesAreFinite) {
     for (auto [w, h] : {std::pair{1u, 1u}, {2u, 1u}, {6u, 2u}}) {
         const Equirect tiny = uniform_sky(w, h, 0.5f);
