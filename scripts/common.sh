@@ -6,10 +6,12 @@ FACET_BUILD_DIR="${FACET_BUILD_DIR:-$FACET_ROOT/build/release}"
 FACET_JOBS="${FACET_JOBS:-$(nproc)}"
 
 # Everything Facet builds and runs with (design.md); the tests add their own few.
+# glslang-tools: bookworm's glslang CMake config imports /usr/bin/glslangValidator and
+# fails without it (glslang-dev only suggests the package).
 FACET_PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
-  glslang-dev libglfw3-dev libglm-dev libtinygltf-dev libopenimageio-dev libimgui-dev
+  glslang-dev glslang-tools libglfw3-dev libglm-dev libtinygltf-dev libopenimageio-dev libimgui-dev
 )
 FACET_TEST_PACKAGES=(libgtest-dev libgmock-dev libbenchmark-dev xvfb)
 
