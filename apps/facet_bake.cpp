@@ -267,8 +267,13 @@ int bake(const Options& o) {
     if (!o.graph_dot.empty())
         if (Status s = write_text_file(o.graph_dot, compiled.to_dot()); !s) throw std::runtime_error(s.error().message);
 
-    std::fprintf(stderr, "%s: running %zu passes...\n", program, compiled.passes.size());
-    auto run = run_graph(context, compiled);
+    std::fprintf(stderr, "%s: running %zu passes\n", program, compiled.passes.size());
+    auto run = std::make_unique<GraphRun>(context, compiled);
+    const auto passes_start = std::chrono::steady_clock::now();
+    run->submit_and_wait([&](uint32_t done, uint32_t total, const std::string& pass) {
+        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - passes_start).count();
+        std::fprintf(stderr, "%s: [%u/%u] %-40s %6.2f s\n", program, done, total, pass.c_str(), s);
+    });
     BakeResults results;
     results.timings = run->timings();
     results.environment = read_all(context, *run->transient_image(equirect));

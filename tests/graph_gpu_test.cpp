@@ -249,6 +249,51 @@ TEST_F(GraphGpuTest, GraphicsPassClearsAndDrawsATriangle) {
     EXPECT_NEAR(inside, w * h / 2, w);  // half the target, give or take the diagonal
 }
 
+// Progress mode: one submission per pass, same results, barriers still honoured across
+// submissions (the fixture fails on any synchronization-validation message).
+TEST_F(GraphGpuTest, PerPassSubmissionsReportProgress) {
+    const uint32_t w = 64, h = 32;
+    Pipeline pattern = compute(pattern_source, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
+    Pipeline transform =
+        compute(transform_source, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
+    ImageDesc desc;
+    desc.width = w;
+    desc.height = h;
+    RenderGraph g;
+    auto a = g.create_image("pattern", desc);
+    auto b = g.create_image("transformed", desc);
+    g.add_compute_pass("pattern", [&](PassBuilder& pb) { a = pb.write_storage(a); }, [&](PassContext& pc) {
+        pattern.bind(pc.cmd());
+        const DescriptorWrite writes[] = {DescriptorWrite::storage_image(pc.view(a))};
+        pattern.push_descriptors(pc.cmd(), writes);
+        vkCmdDispatch(pc.cmd(), w / 8, h / 8, 1);
+    });
+    g.add_compute_pass("transform", [&](PassBuilder& pb) {
+        pb.sample(a);
+        b = pb.write_storage(b);
+    }, [&](PassContext& pc) {
+        transform.bind(pc.cmd());
+        const DescriptorWrite writes[] = {DescriptorWrite::sampled_image(pc.view(a), sampler_.handle()),
+                                          DescriptorWrite::storage_image(pc.view(b))};
+        transform.push_descriptors(pc.cmd(), writes);
+        vkCmdDispatch(pc.cmd(), w / 8, h / 8, 1);
+    });
+    g.export_image(b, readable);
+    CompiledGraph compiled = g.compile();
+    GraphRun run(ctx(), compiled);
+    std::vector<std::string> reported;
+    run.submit_and_wait([&](uint32_t done, uint32_t total, const std::string& pass) {
+        EXPECT_EQ(total, 2u);
+        EXPECT_EQ(done, reported.size() + 1);
+        reported.push_back(pass);
+    });
+    EXPECT_EQ(reported, (std::vector<std::string>{"pattern", "transform"}));
+    auto values = read_rgba32f(run, b, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    EXPECT_EQ(values[(7 * w + 5) * 4 + 0], 2.0f * 5 + 1);
+    EXPECT_EQ(values[(7 * w + 5) * 4 + 1], 2.0f * 7 + 1);
+    EXPECT_EQ(run.timings().size(), 2u);
+}
+
 TEST_F(GraphGpuTest, HostRecordedCommandBuffer) {
     Pipeline pattern = compute(pattern_source, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
     ImageDesc desc;

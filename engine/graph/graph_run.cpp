@@ -180,32 +180,50 @@ void GraphRun::record_barriers(VkCommandBuffer cmd, const BarrierBatch& batch) c
     vkCmdPipelineBarrier2(cmd, &dep);
 }
 
+void GraphRun::record_pass(VkCommandBuffer cmd, uint32_t i) {
+    const CompiledPass& cp = compiled_.passes[i];
+    const PassNode& pass = compiled_.graph->passes()[cp.pass];
+    if (context_.cmd_begin_label) {
+        VkDebugUtilsLabelEXT label{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
+        label.pLabelName = pass.name.c_str();
+        context_.cmd_begin_label(cmd, &label);
+    }
+    record_barriers(cmd, cp.barriers_before);
+    if (queries_) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_, i * 2);
+    if (pass.execute) {
+        PassContext pc(*this, context_, cmd);
+        pass.execute(pc);
+    }
+    if (queries_) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_, i * 2 + 1);
+    if (context_.cmd_end_label) context_.cmd_end_label(cmd);
+}
+
 void GraphRun::record(VkCommandBuffer cmd) {
     if (recorded_) throw UsageError("a GraphRun records once; compile and run the graph again");
     recorded_ = true;
     if (queries_) vkCmdResetQueryPool(cmd, queries_, 0, static_cast<uint32_t>(compiled_.passes.size() * 2));
-    for (uint32_t i = 0; i < compiled_.passes.size(); ++i) {
-        const CompiledPass& cp = compiled_.passes[i];
-        const PassNode& pass = compiled_.graph->passes()[cp.pass];
-        if (context_.cmd_begin_label) {
-            VkDebugUtilsLabelEXT label{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
-            label.pLabelName = pass.name.c_str();
-            context_.cmd_begin_label(cmd, &label);
-        }
-        record_barriers(cmd, cp.barriers_before);
-        if (queries_) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_, i * 2);
-        if (pass.execute) {
-            PassContext pc(*this, context_, cmd);
-            pass.execute(pc);
-        }
-        if (queries_) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_, i * 2 + 1);
-        if (context_.cmd_end_label) context_.cmd_end_label(cmd);
-    }
+    for (uint32_t i = 0; i < compiled_.passes.size(); ++i) record_pass(cmd, i);
     record_barriers(cmd, compiled_.final_barriers);
 }
 
 void GraphRun::submit_and_wait() {
     context_.submit_and_wait([this](VkCommandBuffer cmd) { record(cmd); });
+}
+
+void GraphRun::submit_and_wait(const Progress& progress) {
+    if (recorded_) throw UsageError("a GraphRun records once; compile and run the graph again");
+    recorded_ = true;
+    const uint32_t total = static_cast<uint32_t>(compiled_.passes.size());
+    if (queries_)
+        context_.submit_and_wait([&](VkCommandBuffer cmd) { vkCmdResetQueryPool(cmd, queries_, 0, total * 2); });
+    for (uint32_t i = 0; i < total; ++i) {
+        context_.submit_and_wait([&](VkCommandBuffer cmd) {
+            record_pass(cmd, i);
+            if (i + 1 == total) record_barriers(cmd, compiled_.final_barriers);
+        });
+        if (progress) progress(i + 1, total, compiled_.graph->passes()[compiled_.passes[i].pass].name);
+    }
+    if (total == 0) context_.submit_and_wait([&](VkCommandBuffer cmd) { record_barriers(cmd, compiled_.final_barriers); });
 }
 
 std::vector<PassTiming> GraphRun::timings() const {

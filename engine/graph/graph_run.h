@@ -3,6 +3,7 @@
 // behind its barriers with GPU timestamps around it, and the work is submitted (or left
 // in a command buffer the host submits). A GraphRun owns everything the recorded
 // commands use, so it must outlive their execution.
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -55,6 +56,11 @@ public:
     void record(VkCommandBuffer cmd);
     // Records into a one-time command buffer of the context, submits it and waits.
     void submit_and_wait();
+    // Progress on long work: one submission per pass, `progress` called after each with
+    // the number of passes done, the total and the pass's name. Barriers still hold:
+    // they order work across submissions to the same queue.
+    using Progress = std::function<void(uint32_t done, uint32_t total, const std::string& pass)>;
+    void submit_and_wait(const Progress& progress);
 
     // GPU time of every executed pass, in order; call after the work completed.
     // Empty when the queue has no timestamps.
@@ -77,6 +83,7 @@ private:
     const ImageDesc& image_desc(uint32_t resource) const;
     void allocate();
     void record_barriers(VkCommandBuffer cmd, const BarrierBatch& batch) const;
+    void record_pass(VkCommandBuffer cmd, uint32_t index);
     VkImage physical_image(uint32_t physical) const;
     VkBuffer physical_buffer(uint32_t physical) const;
 
