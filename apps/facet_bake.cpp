@@ -250,7 +250,7 @@ int bake(const Options& o) {
     auto irradiance = check(add_irradiance_passes(graph, programs, cube_sampler, cube,
                                                   graph.create_image("irradiance",
                                                                      environment_cube_desc(o.irradiance.size, 1)),
-                                                  o.irradiance, &sh9));
+                                                  o.irradiance, &sh9, equirect));
     auto spec = check(add_specular_passes(graph, programs, cube_sampler, cube,
                                           graph.create_image("specular", environment_cube_desc(cube_size, specular.levels)),
                                           specular));

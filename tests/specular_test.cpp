@@ -57,7 +57,8 @@ Vec3 prefiltered(const TexelTable& t, const Vec3& n, double roughness) {
 class SpecularTest : public GpuTest {
 protected:
     CubeLevels bake(const Equirect& e, const SpecularSettings& s) {
-        return run_ibl(ctx(), e, [&](RenderGraph& g, ProgramCache& programs, const Sampler& sampler, ImageHandle cube) {
+        return run_ibl(ctx(), e, [&](RenderGraph& g, ProgramCache& programs, const Sampler& sampler, ImageHandle cube,
+                                     ImageHandle) {
             const ImageDesc env = g.resource(cube).image_desc;
             auto out = g.create_image("specular", environment_cube_desc(env.width, s.levels));
             auto written = add_specular_passes(g, programs, sampler, cube, out, s);

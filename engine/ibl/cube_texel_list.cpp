@@ -32,4 +32,30 @@ Result<CubeTexelList> add_cube_texel_list_pass(RenderGraph& graph, ProgramCache&
     return list;
 }
 
+Result<CubeTexelList> add_equirect_texel_list_pass(RenderGraph& graph, ProgramCache& programs, ImageHandle equirect,
+                                                   uint32_t target_entries, const std::string& name) {
+    const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+    auto program = programs.compute("ibl/equirect_texels.comp", bindings, sizeof(uint32_t));
+    if (!program) return program.error();
+    const ImageDesc& d = graph.resource(equirect).image_desc;
+    uint32_t block = 1;
+    while (uint64_t(d.width / (block * 2)) * (d.height / (block * 2)) >= target_entries) block *= 2;
+    const uint32_t bx = (d.width + block - 1) / block, by = (d.height + block - 1) / block;
+    CubeTexelList list;
+    list.count = bx * by;
+    auto texels = graph.create_buffer(name, {VkDeviceSize(list.count) * 32});
+    graph.add_compute_pass(name, [&](PassBuilder& b) {
+        b.read_storage(equirect, ImageRange::mip(0));
+        list.buffer = b.write(texels);
+    }, [p = *program, equirect, texels, block, bx, by](PassContext& pc) {
+        p->bind(pc.cmd());
+        const DescriptorWrite writes[] = {DescriptorWrite::storage_image(pc.view(equirect, ImageRange::mip(0))),
+                                          DescriptorWrite::storage_buffer(pc.buffer(texels))};
+        p->push_descriptors(pc.cmd(), writes);
+        p->push_constants(pc.cmd(), block);
+        vkCmdDispatch(pc.cmd(), group_count(bx, 8), group_count(by, 8), 1);
+    });
+    return list;
+}
+
 }  // namespace facet

@@ -22,6 +22,11 @@ struct CubeTexelList {
 Result<CubeTexelList> add_cube_texel_list_pass(RenderGraph& graph, ProgramCache& programs, ImageHandle environment,
                                                uint32_t level, const std::string& name);
 
+// The same list from blocks of texels of an equirectangular image (RGBA32F), sized to
+// about `target_entries` entries.
+Result<CubeTexelList> add_equirect_texel_list_pass(RenderGraph& graph, ProgramCache& programs, ImageHandle equirect,
+                                                   uint32_t target_entries, const std::string& name);
+
 // 8x8 groups over every face of an n x n level.
 void dispatch_cube(PassContext& pc, uint32_t n);
 

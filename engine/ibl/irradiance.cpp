@@ -14,8 +14,20 @@ namespace {
 constexpr VkImageViewType array_view = cube_array_view;
 
 // convolve and blur: list the texels of a small level, then convolve with the list.
+// The list to convolve: the equirect's texels when given and fine enough that each
+// texel is a small cap (entries model texels as caps, which a texel spanning more than
+// a hemisphere is not), else a small cube level's.
+Result<CubeTexelList> texel_list(RenderGraph& graph, ProgramCache& programs, ImageHandle environment,
+                                 ImageHandle equirect, const IrradianceSettings& s, const std::string& name) {
+    if (equirect.valid() && graph.resource(equirect).image_desc.height >= 16)
+        return add_equirect_texel_list_pass(graph, programs, equirect, 6 * s.source_size * s.source_size, name);
+    const ImageDesc& env = graph.resource(environment).image_desc;
+    return add_cube_texel_list_pass(graph, programs, environment,
+                                    level_at_most(env.width, env.mip_levels, s.source_size), name);
+}
+
 Result<ImageHandle> add_texel_convolution(RenderGraph& graph, ProgramCache& programs, ImageHandle environment,
-                                          ImageHandle irradiance, const IrradianceSettings& s) {
+                                          ImageHandle equirect, ImageHandle irradiance, const IrradianceSettings& s) {
     const VkDescriptorType conv_bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
     struct Params {
         uint32_t texel_count, gaussian;
@@ -23,10 +35,7 @@ Result<ImageHandle> add_texel_convolution(RenderGraph& graph, ProgramCache& prog
     };
     auto convolve = programs.compute("ibl/irradiance_convolve.comp", conv_bindings, sizeof(Params));
     if (!convolve) return convolve.error();
-    const ImageDesc& env = graph.resource(environment).image_desc;
-    auto list = add_cube_texel_list_pass(graph, programs, environment,
-                                         level_at_most(env.width, env.mip_levels, s.source_size),
-                                         "irradiance texel list");
+    auto list = texel_list(graph, programs, environment, equirect, s, "irradiance texel list");
     if (!list) return list.error();
     const bool blur = s.method == IrradianceMethod::blur;
     const Params params{list->count, blur ? 1u : 0u, s.blur_sigma};
@@ -46,7 +55,7 @@ Result<ImageHandle> add_texel_convolution(RenderGraph& graph, ProgramCache& prog
 }
 
 // sh9: project the texel list on 9 SH functions, reduce, choose the window, evaluate.
-Result<ImageHandle> add_sh9(RenderGraph& graph, ProgramCache& programs, ImageHandle environment,
+Result<ImageHandle> add_sh9(RenderGraph& graph, ProgramCache& programs, ImageHandle environment, ImageHandle equirect,
                             ImageHandle irradiance, const IrradianceSettings& s, BufferHandle* coefficients_out) {
     const VkDescriptorType two_buffers[] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
     const VkDescriptorType buffer_image[] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
@@ -59,9 +68,7 @@ Result<ImageHandle> add_sh9(RenderGraph& graph, ProgramCache& programs, ImageHan
     if (!reduce) return reduce.error();
     auto evaluate = programs.compute("ibl/sh9_irradiance.comp", buffer_image, 0);
     if (!evaluate) return evaluate.error();
-    const ImageDesc& env = graph.resource(environment).image_desc;
-    auto list = add_cube_texel_list_pass(graph, programs, environment,
-                                         level_at_most(env.width, env.mip_levels, s.source_size), "sh9 texel list");
+    auto list = texel_list(graph, programs, environment, equirect, s, "sh9 texel list");
     if (!list) return list.error();
     const uint32_t groups = group_count(list->count, 64);
     auto partials = graph.create_buffer("sh9 partial sums", {VkDeviceSize(groups) * 9 * 16});
@@ -160,19 +167,20 @@ uint32_t level_at_most(uint32_t size, uint32_t mip_levels, uint32_t max_face) {
 
 Result<ImageHandle> add_irradiance_passes(RenderGraph& graph, ProgramCache& programs, const Sampler& cube_sampler,
                                           ImageHandle environment, ImageHandle irradiance,
-                                          const IrradianceSettings& settings, BufferHandle* sh9_coefficients) {
+                                          const IrradianceSettings& settings, BufferHandle* sh9_coefficients,
+                                          ImageHandle equirect) {
     const ImageDesc& out = graph.resource(irradiance).image_desc;
     if (!out.cube || out.width != settings.size)
         return Error{"irradiance: the output must be a cube of face size " + std::to_string(settings.size)};
     switch (settings.method) {
         case IrradianceMethod::convolve:
         case IrradianceMethod::blur:
-            return add_texel_convolution(graph, programs, environment, irradiance, settings);
+            return add_texel_convolution(graph, programs, environment, equirect, irradiance, settings);
         case IrradianceMethod::riemann:
         case IrradianceMethod::lowmip:
             return add_cube_sampling(graph, programs, cube_sampler, environment, irradiance, settings);
         case IrradianceMethod::sh9:
-            return add_sh9(graph, programs, environment, irradiance, settings, sh9_coefficients);
+            return add_sh9(graph, programs, environment, equirect, irradiance, settings, sh9_coefficients);
     }
     return Error{"irradiance: unknown method"};
 }

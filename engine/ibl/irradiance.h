@@ -36,12 +36,14 @@ struct IrradianceSettings {
 
 // Reads `environment` (a cube with its full mip chain, sampled with `cube_sampler`:
 // linear, mipmapped) and writes `irradiance` (RGBA32F cube, settings.size, 1 level).
+// When `equirect` (the input image, RGBA32F) is given, convolve, blur and sh9 list its
+// texels directly instead of the cube's, so no resampling stands between input and result.
 // For sh9, `sh9_coefficients` (if given) receives the buffer of 10 vec4: L_i for
 // i = 0..8 (RGB, before the cosine kernel) and the window parameter h in [9].x (0: none).
 Result<ImageHandle> add_irradiance_passes(RenderGraph& graph, ProgramCache& programs, const Sampler& cube_sampler,
                                           ImageHandle environment, ImageHandle irradiance,
                                           const IrradianceSettings& settings,
-                                          BufferHandle* sh9_coefficients = nullptr);
+                                          BufferHandle* sh9_coefficients = nullptr, ImageHandle equirect = {});
 
 // The level of a cube of face `size` whose faces are at most `max_face` texels wide.
 uint32_t level_at_most(uint32_t size, uint32_t mip_levels, uint32_t max_face);

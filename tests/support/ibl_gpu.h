@@ -26,7 +26,7 @@ struct CubeLevels {
 
 // What a test adds after the environment cube exists: returns the cube image to read.
 using AddPasses = std::function<ImageHandle(RenderGraph&, ProgramCache&, const Sampler& cube_sampler,
-                                            ImageHandle environment_cube)>;
+                                            ImageHandle environment_cube, ImageHandle equirect)>;
 
 // Uploads `e`, builds the environment cube (face size h / 2, full mips), adds `passes`
 // (nullptr: read the environment cube itself), runs, and reads every level of the result.
