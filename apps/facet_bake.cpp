@@ -253,7 +253,7 @@ int bake(const Options& o) {
                                                   o.irradiance, &sh9, equirect));
     auto spec = check(add_specular_passes(graph, programs, cube_sampler, cube,
                                           graph.create_image("specular", environment_cube_desc(cube_size, specular.levels)),
-                                          specular));
+                                          specular, equirect));
     ImageDesc lut_desc;
     lut_desc.width = lut_desc.height = o.lut.size;
     auto lut = check(add_brdf_lut_passes(graph, programs, o.lut, graph.create_image("brdf lut", lut_desc)));

@@ -55,7 +55,8 @@ uint32_t convolve_source_size(float roughness) {
 }
 
 Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& programs, const Sampler& cube_sampler,
-                                        ImageHandle environment, ImageHandle specular, const SpecularSettings& s) {
+                                        ImageHandle environment, ImageHandle specular, const SpecularSettings& s,
+                                        ImageHandle equirect) {
     const ImageDesc env = graph.resource(environment).image_desc;
     const ImageDesc out = graph.resource(specular).image_desc;
     if (!out.cube || out.width != env.width || out.mip_levels != s.levels)
@@ -96,8 +97,12 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
             };
             auto conv = programs.compute("ibl/specular_convolve.comp", conv_bindings, sizeof(Params));
             if (!conv) return conv.error();
-            const uint32_t level = level_at_most(env.width, env.mip_levels, convolve_source_size(r));
-            auto list = add_cube_texel_list_pass(graph, programs, environment, level, name + " texels");
+            const uint32_t source = convolve_source_size(r);
+            const bool from_equirect = equirect.valid() && graph.resource(equirect).image_desc.height >= 16;
+            auto list = from_equirect
+                            ? add_equirect_texel_list_pass(graph, programs, equirect, 6 * source * source, name + " texels")
+                            : add_cube_texel_list_pass(graph, programs, environment,
+                                                       level_at_most(env.width, env.mip_levels, source), name + " texels");
             if (!list) return list.error();
             const Params params{list->count, r};
             const BufferHandle texels = list->buffer;

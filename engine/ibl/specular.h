@@ -45,7 +45,10 @@ uint32_t convolve_source_size(float roughness);
 // `environment`: the environment cube with its full mip chain (sampled through
 // `cube_sampler`: linear, mipmapped). `specular`: an RGBA32F cube of the same face size
 // with settings.levels levels. Returns the specular cube's final version.
+// With `equirect` (the input, RGBA32F, at least 16 rows), convolve levels list its texels
+// directly instead of a cube level's (no resampling between input and result).
 Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& programs, const Sampler& cube_sampler,
-                                        ImageHandle environment, ImageHandle specular, const SpecularSettings& settings);
+                                        ImageHandle environment, ImageHandle specular, const SpecularSettings& settings,
+                                        ImageHandle equirect = {});
 
 }  // namespace facet
