@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <OpenImageIO/imageio.h>
+
 #include "io/ktx2.h"
 
 namespace {
@@ -39,6 +41,11 @@ struct TempDir {
     TempDir() { fs::create_directories(path); }
     ~TempDir() { fs::remove_all(path); }
 };
+
+std::string file_bytes(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), {});
+}
 
 TEST(FacetBake, HelpAndVersion) {
     Ran help = run("--help");
@@ -122,6 +129,30 @@ TEST(FacetBake, BakesTheBuiltInSky) {
     EXPECT_NE(forced.output.find("running"), std::string::npos) << forced.output;
 }
 
+TEST(FacetBake, BadTexelsFailOrAreSanitised) {
+    TempDir dir;
+    std::vector<float> texels(32 * 16 * 3, 0.5f);
+    texels[(3 * 32 + 5) * 3 + 1] = -2.0f;
+    const std::string path = (dir.path / "negative.exr").string();
+    {
+        auto out = OIIO::ImageOutput::create(path);
+        ASSERT_TRUE(out);
+        OIIO::ImageSpec spec(32, 16, 3, OIIO::TypeDesc::FLOAT);
+        ASSERT_TRUE(out->open(path, spec));
+        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, texels.data()));
+        out->close();
+    }
+    const std::string out_dir = (dir.path / "out").string();
+    Ran bad = run(path + " --lut-size 8 --out " + out_dir);
+    EXPECT_EQ(bad.status, 1);
+    EXPECT_NE(bad.output.find("negative.exr: texel (5, 3) channel G is negative"), std::string::npos) << bad.output;
+    EXPECT_FALSE(fs::exists(fs::path(out_dir) / "bake.json")) << "no output for a failed bake";
+    Ran sanitised = run(path + " --sanitize --lut-size 8 --out " + out_dir);
+    ASSERT_EQ(sanitised.status, 0) << sanitised.output;
+    EXPECT_NE(sanitised.output.find("replaced 1 NaN, Inf or negative texels"), std::string::npos) << sanitised.output;
+    EXPECT_NE(file_bytes(fs::path(out_dir) / "bake.json").find("\"sanitized_texels\": 1"), std::string::npos);
+}
+
 TEST(FacetBake, BakesAnEnvironmentFile) {
     TempDir dir;
     const std::string out = (dir.path / "studio").string();
@@ -135,11 +166,6 @@ TEST(FacetBake, BakesAnEnvironmentFile) {
     EXPECT_NE(text.find("\"upload environment\""), std::string::npos) << text;
     EXPECT_NE(text.find("\"samples\": 256"), std::string::npos) << text;
     EXPECT_NE(text.find("\"size\": 32"), std::string::npos) << text;
-}
-
-std::string file_bytes(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return std::string((std::istreambuf_iterator<char>(in)), {});
 }
 
 // Results identical from run to run: no random seeds, no order-dependent sums.
