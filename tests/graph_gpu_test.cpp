@@ -66,6 +66,9 @@ layout(location = 0) out vec4 color;
 void main() { color = vec4(0.25, 0.5, 1.0, 1.0); }
 )";
 
+const ResourceState readable{VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                             VK_ACCESS_2_TRANSFER_READ_BIT};
+
 class GraphGpuTest : public test::GpuTest {
 protected:
     Pipeline compute(const char* source, std::vector<VkDescriptorType> bindings) {
@@ -81,41 +84,46 @@ protected:
         std::memcpy(values.data(), bytes.data(), bytes.size());
         return values;
     }
+    // Pass "pattern" writes a w x h image from its texel coordinates; pass "transform"
+    // samples it and writes 2 * value + 1 into the returned image (exported, readable).
+    ImageHandle add_pattern_then_transform(RenderGraph& g, uint32_t w, uint32_t h) {
+        pattern_ = compute(pattern_source, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
+        transform_ = compute(transform_source,
+                             {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
+        ImageDesc desc;
+        desc.width = w;
+        desc.height = h;
+        auto a = g.create_image("pattern", desc);
+        auto b = g.create_image("transformed", desc);
+        g.add_compute_pass("pattern", [&](PassBuilder& pb) { a = pb.write_storage(a); }, [this, a, w, h](PassContext& pc) {
+            pattern_.bind(pc.cmd());
+            const DescriptorWrite writes[] = {DescriptorWrite::storage_image(pc.view(a))};
+            pattern_.push_descriptors(pc.cmd(), writes);
+            vkCmdDispatch(pc.cmd(), group_count(w, 8), group_count(h, 8), 1);
+        });
+        g.add_compute_pass("transform", [&](PassBuilder& pb) {
+            pb.sample(a);
+            b = pb.write_storage(b);
+        }, [this, a, b, w, h](PassContext& pc) {
+            transform_.bind(pc.cmd());
+            const DescriptorWrite writes[] = {DescriptorWrite::sampled_image(pc.view(a), sampler_.handle()),
+                                              DescriptorWrite::storage_image(pc.view(b))};
+            transform_.push_descriptors(pc.cmd(), writes);
+            vkCmdDispatch(pc.cmd(), group_count(w, 8), group_count(h, 8), 1);
+        });
+        g.export_image(b, readable);
+        return b;
+    }
+
     ShaderCompiler compiler_;
     Sampler sampler_{ctx(), VK_FILTER_NEAREST, false, false, "test nearest"};
+    Pipeline pattern_, transform_;
 };
-
-const ResourceState readable{VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                             VK_ACCESS_2_TRANSFER_READ_BIT};
 
 TEST_F(GraphGpuTest, ComputeChainMatchesCpu) {
     const uint32_t w = 256, h = 128;  // 32 x 16 workgroups: enough for every lavapipe thread
-    Pipeline pattern = compute(pattern_source, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
-    Pipeline transform =
-        compute(transform_source, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
-    ImageDesc desc;
-    desc.width = w;
-    desc.height = h;
     RenderGraph g;
-    auto a = g.create_image("pattern", desc);
-    auto b = g.create_image("transformed", desc);
-    g.add_compute_pass("pattern", [&](PassBuilder& pb) { a = pb.write_storage(a); }, [&](PassContext& pc) {
-        pattern.bind(pc.cmd());
-        const DescriptorWrite writes[] = {DescriptorWrite::storage_image(pc.view(a))};
-        pattern.push_descriptors(pc.cmd(), writes);
-        vkCmdDispatch(pc.cmd(), group_count(w, 8), group_count(h, 8), 1);
-    });
-    g.add_compute_pass("transform", [&](PassBuilder& pb) {
-        pb.sample(a);
-        b = pb.write_storage(b);
-    }, [&](PassContext& pc) {
-        transform.bind(pc.cmd());
-        const DescriptorWrite writes[] = {DescriptorWrite::sampled_image(pc.view(a), sampler_.handle()),
-                                          DescriptorWrite::storage_image(pc.view(b))};
-        transform.push_descriptors(pc.cmd(), writes);
-        vkCmdDispatch(pc.cmd(), group_count(w, 8), group_count(h, 8), 1);
-    });
-    g.export_image(b, readable);
+    auto b = add_pattern_then_transform(g, w, h);
     CompiledGraph compiled = g.compile();
     auto run = run_graph(ctx(), compiled);
     auto values = read_rgba32f(*run, b, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
@@ -253,32 +261,8 @@ TEST_F(GraphGpuTest, GraphicsPassClearsAndDrawsATriangle) {
 // submissions (the fixture fails on any synchronization-validation message).
 TEST_F(GraphGpuTest, PerPassSubmissionsReportProgress) {
     const uint32_t w = 64, h = 32;
-    Pipeline pattern = compute(pattern_source, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
-    Pipeline transform =
-        compute(transform_source, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
-    ImageDesc desc;
-    desc.width = w;
-    desc.height = h;
     RenderGraph g;
-    auto a = g.create_image("pattern", desc);
-    auto b = g.create_image("transformed", desc);
-    g.add_compute_pass("pattern", [&](PassBuilder& pb) { a = pb.write_storage(a); }, [&](PassContext& pc) {
-        pattern.bind(pc.cmd());
-        const DescriptorWrite writes[] = {DescriptorWrite::storage_image(pc.view(a))};
-        pattern.push_descriptors(pc.cmd(), writes);
-        vkCmdDispatch(pc.cmd(), w / 8, h / 8, 1);
-    });
-    g.add_compute_pass("transform", [&](PassBuilder& pb) {
-        pb.sample(a);
-        b = pb.write_storage(b);
-    }, [&](PassContext& pc) {
-        transform.bind(pc.cmd());
-        const DescriptorWrite writes[] = {DescriptorWrite::sampled_image(pc.view(a), sampler_.handle()),
-                                          DescriptorWrite::storage_image(pc.view(b))};
-        transform.push_descriptors(pc.cmd(), writes);
-        vkCmdDispatch(pc.cmd(), w / 8, h / 8, 1);
-    });
-    g.export_image(b, readable);
+    auto b = add_pattern_then_transform(g, w, h);
     CompiledGraph compiled = g.compile();
     GraphRun run(ctx(), compiled);
     std::vector<std::string> reported;
