@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -65,6 +66,18 @@ std::string Parser::help_text() const {
         text += left + o.help + "\n";
     }
     return text;
+}
+
+bool Parser::answered_help_or_version(const Parsed& parsed, const char* version) const {
+    if (parsed.has("--help")) {
+        std::fputs(help_text().c_str(), stdout);
+        return true;
+    }
+    if (parsed.has("--version")) {
+        std::printf("%s %s\n", program_.c_str(), version);
+        return true;
+    }
+    return false;
 }
 
 int parse_int(const std::string& text, const std::string& what, int min, int max) {

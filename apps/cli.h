@@ -31,6 +31,8 @@ public:
     // Throws std::invalid_argument with a message naming the option.
     Parsed parse(int argc, char** argv) const;
     std::string help_text() const;
+    // Prints the help or the version when asked for; true if the program should exit.
+    bool answered_help_or_version(const Parsed& parsed, const char* version) const;
 
 private:
     std::string program_, usage_, description_;

@@ -59,7 +59,7 @@ cli::Parser make_parser() {
         .option("--irradiance", "METHOD", "convolve (default), riemann, sh9, blur, lowmip")
         .flag("--sh9-no-window", "sh9: keep the raw coefficients (may ring below 0 on a sun)")
         .option("--specular", "METHOD", "automatic (default), importance, filtered, convolve, mips")
-        .option("--samples", "N", "GGX samples per texel for importance/filtered levels (default 256)")
+        .option("--samples", "N", "GGX samples per texel for importance/filtered levels (default 1024)")
         .option("--size", "N", "cube face size (default: input height / 2)")
         .option("--levels", "N", "specular levels, roughness m/(N-1) (default 6)")
         .option("--irradiance-size", "N", "irradiance face size (default 32)")
@@ -83,14 +83,7 @@ uint32_t positive(const cli::Parsed& a, const char* name, int max) {
 std::optional<Options> parse(int argc, char** argv) {
     cli::Parser parser = make_parser();
     cli::Parsed a = parser.parse(argc, argv);
-    if (a.has("--help")) {
-        std::fputs(parser.help_text().c_str(), stdout);
-        return std::nullopt;
-    }
-    if (a.has("--version")) {
-        std::printf("%s %s\n", program, FACET_VERSION);
-        return std::nullopt;
-    }
+    if (parser.answered_help_or_version(a, FACET_VERSION)) return std::nullopt;
     if (a.positional.size() != 1)
         throw std::invalid_argument("expected exactly one environment (a file or builtin:NAME), got " +
                                     std::to_string(a.positional.size()));

@@ -69,14 +69,7 @@ int main(int argc, char** argv) {
     int runs = 5;
     try {
         a = parser.parse(argc, argv);
-        if (a.has("--help")) {
-            std::fputs(parser.help_text().c_str(), stdout);
-            return 0;
-        }
-        if (a.has("--version")) {
-            std::printf("%s %s\n", program, FACET_VERSION);
-            return 0;
-        }
+        if (parser.answered_help_or_version(a, FACET_VERSION)) return 0;
         if (a.positional.empty() || a.positional[0] != "bake")
             throw std::invalid_argument("the first argument must be the benchmark: bake");
         if (a.has("--runs")) runs = facet::cli::parse_int(a.get("--runs"), "--runs", 1, 1000);
