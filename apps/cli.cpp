@@ -13,6 +13,11 @@ std::string Parsed::get(const std::string& name, const std::string& fallback) co
     return it == values.end() ? fallback : it->second;
 }
 
+std::vector<std::string> Parsed::all(const std::string& name) const {
+    auto it = lists.find(name);
+    return it == lists.end() ? std::vector<std::string>{} : it->second;
+}
+
 Parser::Parser(std::string program, std::string usage, std::string description)
     : program_(std::move(program)), usage_(std::move(usage)), description_(std::move(description)) {
     flag("--help", "show this help and exit");
@@ -25,6 +30,11 @@ Parser& Parser::option(std::string name, std::string value_name, std::string hel
 }
 
 Parser& Parser::flag(std::string name, std::string help) { return option(std::move(name), "", std::move(help)); }
+
+Parser& Parser::repeatable(std::string name, std::string value_name, std::string help) {
+    options_.push_back({std::move(name), std::move(value_name), std::move(help), true});
+    return *this;
+}
 
 Parsed Parser::parse(int argc, char** argv) const {
     Parsed parsed;
@@ -51,7 +61,8 @@ Parsed Parser::parse(int argc, char** argv) const {
             if (i + 1 >= argc) throw std::invalid_argument("option " + arg + " needs a value " + spec->value_name);
             value = argv[++i];
         }
-        if (parsed.values.count(arg)) throw std::invalid_argument("option " + arg + " given twice");
+        if (spec->repeatable) parsed.lists[arg].push_back(value);
+        else if (parsed.values.count(arg)) throw std::invalid_argument("option " + arg + " given twice");
         parsed.values[arg] = value;
     }
     return parsed;

@@ -12,11 +12,16 @@ struct OptionSpec {
     std::string name;         // "--out"
     std::string value_name;   // "DIR"; empty for a flag
     std::string help;
+    bool repeatable = false;  // may be given several times (all values kept in order)
 };
 
 struct Parsed {
     std::map<std::string, std::string> values;  // option -> value ("" for flags)
     std::vector<std::string> positional;
+    std::map<std::string, std::vector<std::string>> lists;  // repeatable options
+
+    // Every value of a repeatable option, in the order given.
+    std::vector<std::string> all(const std::string& name) const;
 
     bool has(const std::string& name) const { return values.count(name) != 0; }
     std::string get(const std::string& name, const std::string& fallback = "") const;
@@ -27,6 +32,7 @@ public:
     Parser(std::string program, std::string usage, std::string description);
     Parser& option(std::string name, std::string value_name, std::string help);
     Parser& flag(std::string name, std::string help);
+    Parser& repeatable(std::string name, std::string value_name, std::string help);
 
     // Throws std::invalid_argument with a message naming the option.
     Parsed parse(int argc, char** argv) const;

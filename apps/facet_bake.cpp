@@ -18,12 +18,7 @@
 #include "gpu/transfer.h"
 #include "graph/compiled_graph.h"
 #include "graph/graph_run.h"
-#include "graph/transfer_passes.h"
-#include "ibl/brdf_lut.h"
-#include "ibl/environment_cube.h"
-#include "ibl/irradiance.h"
-#include "ibl/procedural_sky.h"
-#include "ibl/specular.h"
+#include "ibl/ibl_bake.h"
 #include "io/atomic_file.h"
 #include "io/environment_image.h"
 #include "render/tonemap_preview.h"
@@ -123,40 +118,8 @@ std::optional<Options> parse(int argc, char** argv) {
     return o;
 }
 
-// The environment: a procedural one (generated on the GPU) or a file's texels.
-struct Source {
-    std::optional<ProceduralSky> sky;
-    EnvironmentImage image;
-    std::string content_hash;
-    uint32_t width = 0, height = 0;
-};
-
-Result<Source> resolve_environment(const Options& o) {
-    Source source;
-    if (o.env == "builtin:sky") source.sky = ProceduralSky{};
-    else if (o.env == "builtin:white") source.sky = ProceduralSky::white();
-    else if (o.env.rfind("builtin:", 0) == 0)
-        return Error{o.env + ": unknown built-in environment (builtin:sky, builtin:white)"};
-    if (source.sky) {
-        source.content_hash = source.sky->content_hash();
-        source.width = o.sky_width;
-        source.height = o.sky_width / 2;
-        return source;
-    }
-    auto image = load_environment(o.env, {o.sanitize});
-    if (!image) return image.error();
-    source.image = std::move(image).value();
-    source.content_hash = source.image.content_hash;
-    source.width = source.image.width;
-    source.height = source.image.height;
-    if (source.image.sanitized_texels)
-        std::fprintf(stderr, "%s: %s: replaced %llu NaN, Inf or negative texels with 0\n", program, o.env.c_str(),
-                     static_cast<unsigned long long>(source.image.sanitized_texels));
-    return source;
-}
-
 // Everything that decides the outputs, hashed: equal keys mean equal bakes.
-std::string bake_key(const Options& o, const Source& s, uint32_t cube_size, uint32_t levels) {
+std::string bake_key(const Options& o, const EnvironmentSource& s, uint32_t cube_size, uint32_t levels) {
     Hash64 h;
     h.add(FACET_VERSION).add(s.content_hash);
     const double values[] = {double(s.width), double(s.height), double(cube_size), double(levels),
@@ -179,12 +142,19 @@ bool up_to_date(const std::string& dir, const std::string& key) {
 
 int bake(const Options& o) {
     const auto start = std::chrono::steady_clock::now();
-    auto source = resolve_environment(o);
+    auto source = resolve_environment(o.env, o.sky_width, o.sanitize);
     if (!source) throw std::runtime_error(source.error().message);
-    const uint32_t cube_size = o.cube_size ? o.cube_size : cube_size_for(source->height);
-    const uint32_t cube_mips = full_mip_count(cube_size);
-    SpecularSettings specular = o.specular;
-    specular.levels = std::min(specular.levels, cube_mips);
+    if (source->image.sanitized_texels)
+        std::fprintf(stderr, "%s: %s: replaced %llu NaN, Inf or negative texels with 0\n", program, o.env.c_str(),
+                     static_cast<unsigned long long>(source->image.sanitized_texels));
+    IblSettings requested;
+    requested.cube_size = o.cube_size;
+    requested.irradiance = o.irradiance;
+    requested.specular = o.specular;
+    requested.lut = o.lut;
+    const IblSettings settings = resolved_ibl_settings(requested, *source);
+    const uint32_t cube_size = settings.cube_size;
+    const SpecularSettings& specular = settings.specular;
     const std::string key = bake_key(o, *source, cube_size, specular.levels);
     if (!o.force && up_to_date(o.out_dir, key)) {
         std::fprintf(stderr, "%s: %s is up to date (same input and settings; --force bakes again)\n", program,
@@ -204,52 +174,22 @@ int bake(const Options& o) {
 
     ShaderCompiler compiler;
     ProgramCache programs(context, compiler);
-    Sampler equirect_sampler(context, VK_FILTER_LINEAR, false, true, "equirect sampler");
-    Sampler cube_sampler(context, VK_FILTER_LINEAR, true, false, "cube sampler");
+    IblBake ibl(context, programs);
     RenderGraph graph;
     auto check = [](auto result) {
         if (!result) throw std::runtime_error(result.error().message);
         return *result;
     };
-
-    ImageDesc equirect_desc;
-    equirect_desc.width = source->width;
-    equirect_desc.height = source->height;
-    auto equirect = graph.create_image("environment", equirect_desc);
-    std::optional<Buffer> staging;
-    if (source->sky) {
-        equirect = check(add_procedural_sky_pass(graph, programs, *source->sky, equirect));
-    } else {
-        const std::vector<float>& texels = source->image.rgba;
-        staging.emplace(context, texels.size() * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::upload,
-                        "environment upload");
-        std::memcpy(staging->mapped(), texels.data(), texels.size() * sizeof(float));
-        staging->flush();
-        auto staged = graph.import_buffer("environment texels",
-                                          {staging->handle(), staging->size(),
-                                           {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_HOST_BIT,
-                                            VK_ACCESS_2_HOST_WRITE_BIT},
-                                           {}});
-        equirect = add_upload_pass(graph, "upload environment", staged, equirect);
-    }
-    ImageDesc preview_desc = equirect_desc;
+    const IblImages images = check(ibl.add_passes(graph, *source, settings));
+    ImageDesc preview_desc;
     preview_desc.format = VK_FORMAT_R8G8B8A8_UNORM;
-    auto preview = check(add_tonemap_preview_pass(graph, programs, equirect,
+    preview_desc.width = source->width;
+    preview_desc.height = source->height;
+    auto preview = check(add_tonemap_preview_pass(graph, programs, images.equirect,
                                                   graph.create_image("preview", preview_desc), o.exposure));
-    auto cube = check(add_environment_cube_passes(graph, programs, equirect_sampler, equirect,
-                                                  graph.create_image("environment cube",
-                                                                     environment_cube_desc(cube_size, cube_mips))));
-    BufferHandle sh9;
-    auto irradiance = check(add_irradiance_passes(graph, programs, cube_sampler, cube,
-                                                  graph.create_image("irradiance",
-                                                                     environment_cube_desc(o.irradiance.size, 1)),
-                                                  o.irradiance, &sh9, equirect));
-    auto spec = check(add_specular_passes(graph, programs, cube_sampler, cube,
-                                          graph.create_image("specular", environment_cube_desc(cube_size, specular.levels)),
-                                          specular, equirect));
-    ImageDesc lut_desc;
-    lut_desc.width = lut_desc.height = o.lut.size;
-    auto lut = check(add_brdf_lut_passes(graph, programs, o.lut, graph.create_image("brdf lut", lut_desc)));
+    const ImageHandle equirect = images.equirect, irradiance = images.irradiance, spec = images.specular,
+                      lut = images.lut;
+    const BufferHandle sh9 = images.sh9;
     const ResourceState readable{VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                                  VK_ACCESS_2_TRANSFER_READ_BIT};
     for (ImageHandle h : {equirect, preview, irradiance, spec, lut}) graph.export_image(h, readable);

@@ -212,6 +212,11 @@ Sampler::Sampler(Context& context, VkFilter filter, bool mipmaps, bool repeat_u,
     context.set_name(sampler_, VK_OBJECT_TYPE_SAMPLER, name);
 }
 
+Sampler::Sampler(Context& context, const VkSamplerCreateInfo& info, const std::string& name) : context_(&context) {
+    vk_check(vkCreateSampler(context.device(), &info, nullptr, &sampler_), "vkCreateSampler");
+    context.set_name(sampler_, VK_OBJECT_TYPE_SAMPLER, name);
+}
+
 Sampler::~Sampler() {
     if (sampler_) vkDestroySampler(context_->device(), sampler_, nullptr);
 }

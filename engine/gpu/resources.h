@@ -98,6 +98,8 @@ public:
     Sampler() = default;
     // Clamp-to-edge on all axes (repeat in u when repeat_u: equirect longitude).
     Sampler(Context& context, VkFilter filter, bool mipmaps, bool repeat_u, const std::string& name);
+    // Any other state (e.g. a glTF sampler's filters and wraps).
+    Sampler(Context& context, const VkSamplerCreateInfo& info, const std::string& name);
     ~Sampler();
     Sampler(Sampler&& other) noexcept;
     Sampler& operator=(Sampler&& other) noexcept;

@@ -218,11 +218,18 @@ void assign_physical(const RenderGraph& graph, CompiledGraph& out) {
             if (u.is_image) out.physical_images[p].image_usage |= image_usage(u.access);
             else out.physical_buffers[p].buffer_usage |= buffer_usage(u.access);
         }
-    // Exported results are read back or copied by their users.
+    // Exported results are read back or copied by their users, or sampled by a later
+    // graph when they are left in a shader-readable layout.
     for (uint32_t r = 0; r < resources.size(); ++r) {
         if (!resources[r].exported || out.physical_of[r] == invalid_index) continue;
-        if (resources[r].is_image) out.physical_images[out.physical_of[r]].image_usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-        else out.physical_buffers[out.physical_of[r]].buffer_usage |= VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+        if (resources[r].is_image) {
+            VkImageUsageFlags& usage = out.physical_images[out.physical_of[r]].image_usage;
+            usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+            if (resources[r].export_state.layout == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)
+                usage |= VK_IMAGE_USAGE_SAMPLED_BIT;
+        } else {
+            out.physical_buffers[out.physical_of[r]].buffer_usage |= VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+        }
     }
 }
 

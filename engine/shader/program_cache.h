@@ -1,5 +1,5 @@
 #pragma once
-// Compute pipelines built from shaders/ on first use and kept for the context's life,
+// Compute and graphics pipelines built from shaders/ on first use and kept for the context's life,
 // keyed by shader name + defines (a pass asks for its program each time it is added).
 #include <map>
 #include <memory>
@@ -26,7 +26,13 @@ public:
     Result<const Pipeline*> compute(const std::string& shader, std::span<const VkDescriptorType> bindings,
                                     uint32_t push_constant_bytes, std::span<const ShaderDefine> defines = {});
 
+    // A graphics pipeline from a vertex and a fragment shader compiled with the same
+    // defines; `desc` gives the fixed-function state (its SPIR-V fields are filled here).
+    Result<const Pipeline*> graphics(const std::string& vertex_shader, const std::string& fragment_shader,
+                                     Pipeline::GraphicsDesc desc, std::span<const ShaderDefine> defines = {});
+
     Context& context() { return context_; }
+    ShaderCompiler& compiler() { return compiler_; }
 
 private:
     Context& context_;

@@ -1,0 +1,282 @@
+// facet-render: a model under an environment and lights, rendered offscreen with the
+// forward PBR pass (split-sum image-based lighting baked in the same run) to a PNG
+// (tone-mapped, sRGB) or an EXR (linear, exposure applied), with NAME.json beside it
+// and, on request, one EXR per view (normal, position, D, F, G, diffuse, ...).
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+
+#include "cli.h"
+#include "core/result.h"
+#include "gpu/context.h"
+#include "io/atomic_file.h"
+#include "io/image_io.h"
+#include "io/json_writer.h"
+#include "render_job.h"
+#include "scene/builtin_scenes.h"
+#include "scene/material_presets.h"
+
+namespace {
+
+using namespace facet;
+namespace fs = std::filesystem;
+
+constexpr const char* program = "facet-render";
+
+struct Options {
+    RenderJob job;
+    std::string out, device;
+    bool validation = false;
+};
+
+cli::Parser make_parser() {
+    cli::Parser p(program, "--out FILE.png|FILE.exr [--model PATH|builtin:NAME] [--env PATH|builtin:NAME|none] [options]",
+                  "Renders a glTF model (.gltf, .glb) or a built-in scene (" + builtin_scene_names() +
+                      ")\nunder an environment (.hdr, .exr; " + builtin_environment_names() +
+                      "; none) with the forward PBR pass:\nCook-Torrance with GGX, Fresnel-Schlick and Smith/Schlick-GGX, "
+                      "split-sum image-based\nlighting baked on the fly, 4x MSAA. A .png is tone-mapped and gamma-encoded; "
+                      "a .exr is\nlinear radiance with the exposure applied. NAME.json beside it records the camera,\n"
+                      "inputs and their hashes so the image can be reproduced.");
+    p.option("--out", "FILE", "output image, .png or .exr (required)")
+        .option("--model", "PATH|builtin:NAME", "model to render (default builtin:spheres)")
+        .option("--env", "PATH|builtin:NAME|none", "environment for image-based lighting (default builtin:sky)")
+        .option("--width", "W", "image width (default 1280)")
+        .option("--height", "H", "image height (default 720)")
+        .option("--camera", "orbit:THETA,PHI,RADIUS|gltf",
+                "orbit the target (degrees, metres) or use the file's first camera (default: frame the bounds)")
+        .option("--target", "X,Y,Z", "point the camera looks at (default: centre of the bounds)")
+        .option("--fov", "DEG", "vertical field of view (default 45)")
+        .option("--exposure", "E", "exposure multiplier (default 1)")
+        .option("--tonemap", "OP", "reinhard (default), exposure, aces, neutral, none")
+        .option("--gamma", "G", "encode with x^(1/G) instead of the sRGB curve")
+        .option("--preset", "NAME", "override every material: " + material_preset_names())
+        .repeatable("--light", "SPEC",
+                    "add a light (repeatable): 'directional dir=X,Y,Z [color=R,G,B] [intensity=LUX]',\n"
+                    "                          'point pos=X,Y,Z [intensity=CD] [range=M]', 'spot pos=... dir=...\n"
+                    "                          [inner=DEG] [outer=DEG]'")
+        .option("--aov", "LIST", "also write NAME.<view>.exr for each view: all or " + view_names())
+        .flag("--no-skybox", "black background instead of the environment")
+        .option("--samples", "N", "MSAA samples: 1, 2, 4 (default) or 8")
+        .flag("--height-correlated", "glTF's height-correlated Smith term for lights (default Schlick-GGX)")
+        .option("--ibl-intensity", "S", "scale of the image-based lighting (default 1)")
+        .option("--env-width", "N", "width of a built-in environment (default 1024)")
+        .option("--ibl-size", "N", "cube face size of the bake (default: environment height / 2)")
+        .option("--ibl-samples", "N", "GGX samples per texel for smooth specular levels (default 1024)")
+        .flag("--sanitize", "replace NaN, Inf and negative environment texels with 0 instead of failing")
+        .option("--device", "NAME|INDEX", "Vulkan device (default: FACET_DEVICE, a GPU, else lavapipe)")
+        .flag("--validation", "enable the Khronos validation layer");
+    return p;
+}
+
+float number(const cli::Parsed& a, const char* name, float min, float max) {
+    const double v = cli::parse_double(a.get(name), name);
+    if (v < min || v > max)
+        throw std::invalid_argument(std::string(name) + ": " + a.get(name) + " is outside " + std::to_string(min) +
+                                    ".." + std::to_string(max));
+    return float(v);
+}
+
+std::optional<Options> parse(int argc, char** argv) {
+    cli::Parser parser = make_parser();
+    cli::Parsed a = parser.parse(argc, argv);
+    if (parser.answered_help_or_version(a, FACET_VERSION)) return std::nullopt;
+    if (!a.positional.empty()) throw std::invalid_argument("unexpected argument '" + a.positional[0] + "'");
+    if (!a.has("--out")) throw std::invalid_argument("--out FILE.png|FILE.exr is required");
+    Options o;
+    RenderJob& j = o.job;
+    o.out = a.get("--out");
+    const std::string ext = fs::path(o.out).extension().string();
+    if (ext != ".png" && ext != ".exr")
+        throw std::invalid_argument("--out " + o.out + ": the name must end in .png or .exr");
+    j.model = a.get("--model", j.model);
+    j.env = a.get("--env", j.env);
+    if (a.has("--width")) j.frame.width = uint32_t(cli::parse_int(a.get("--width"), "--width", 1, 16384));
+    if (a.has("--height")) j.frame.height = uint32_t(cli::parse_int(a.get("--height"), "--height", 1, 16384));
+    if (a.has("--camera")) {
+        const std::string c = a.get("--camera");
+        std::array<float, 3> orbit{};
+        char extra;
+        if (c == "gltf") j.gltf_camera = true;
+        else if (std::sscanf(c.c_str(), "orbit:%f,%f,%f%c", &orbit[0], &orbit[1], &orbit[2], &extra) == 3 &&
+                 std::isfinite(orbit[0]) && std::isfinite(orbit[1]) && orbit[2] > 0 && std::isfinite(orbit[2]))
+            j.orbit = orbit;
+        else
+            throw std::invalid_argument("--camera: expected orbit:THETA,PHI,RADIUS (radius > 0) or gltf, got '" + c + "'");
+    }
+    if (a.has("--target")) {
+        glm::vec3 t;
+        char extra;
+        if (std::sscanf(a.get("--target").c_str(), "%f,%f,%f%c", &t.x, &t.y, &t.z, &extra) != 3)
+            throw std::invalid_argument("--target: expected X,Y,Z, got '" + a.get("--target") + "'");
+        j.target = t;
+    }
+    if (a.has("--fov")) j.fov_deg = number(a, "--fov", 1.0f, 170.0f);
+    if (a.has("--exposure")) j.frame.display.exposure = number(a, "--exposure", 1e-6f, 1e6f);
+    if (a.has("--tonemap")) {
+        auto t = parse_tonemap(a.get("--tonemap"));
+        if (!t) throw std::invalid_argument("--tonemap: unknown operator '" + a.get("--tonemap") +
+                                            "' (reinhard, exposure, aces, neutral, none)");
+        j.frame.display.tonemap = *t;
+    }
+    if (a.has("--gamma")) j.frame.display.gamma = number(a, "--gamma", 0.1f, 10.0f);
+    if (a.has("--preset")) {
+        if (!find_material_preset(a.get("--preset")))
+            throw std::invalid_argument("--preset: unknown preset '" + a.get("--preset") + "' (" +
+                                        material_preset_names() + ")");
+        j.preset = a.get("--preset");
+    }
+    for (const std::string& spec : a.all("--light")) {
+        auto light = parse_light(spec);
+        if (!light) throw std::invalid_argument(light.error().message);
+        j.extra_lights.push_back(*light);
+    }
+    if (a.has("--aov")) {
+        std::string error;
+        auto views = parse_view_list(a.get("--aov"), &error);
+        if (!views) throw std::invalid_argument("--aov: " + error);
+        j.frame.views = *views;
+    }
+    j.frame.skybox = !a.has("--no-skybox");
+    if (a.has("--samples")) {
+        const int n = cli::parse_int(a.get("--samples"), "--samples", 1, 8);
+        if (n != 1 && n != 2 && n != 4 && n != 8) throw std::invalid_argument("--samples must be 1, 2, 4 or 8");
+        j.frame.samples = uint32_t(n);
+    }
+    j.frame.height_correlated = a.has("--height-correlated");
+    if (a.has("--ibl-intensity")) j.ibl_intensity = number(a, "--ibl-intensity", 0.0f, 1e6f);
+    if (a.has("--env-width")) {
+        j.env_width = uint32_t(cli::parse_int(a.get("--env-width"), "--env-width", 2, 16384));
+        if (j.env_width % 2) throw std::invalid_argument("--env-width must be even");
+    }
+    if (a.has("--ibl-size")) j.ibl.cube_size = uint32_t(cli::parse_int(a.get("--ibl-size"), "--ibl-size", 1, 8192));
+    if (a.has("--ibl-samples"))
+        j.ibl.specular.sample_count = uint32_t(cli::parse_int(a.get("--ibl-samples"), "--ibl-samples", 1, 1 << 20));
+    j.sanitize = a.has("--sanitize");
+    o.device = a.get("--device");
+    o.validation = a.has("--validation");
+    return o;
+}
+
+void write_vec3(JsonWriter& j, const char* key, glm::vec3 v) {
+    j.begin_array(key).value({}, double(v.x)).value({}, double(v.y)).value({}, double(v.z)).end_array();
+}
+
+std::string describe(const Options& o, const RenderSession& session, const RenderedImages& images,
+                     const std::string& context_device, const std::vector<std::string>& view_files) {
+    const CameraView& c = session.camera();
+    const FrameSettings& f = session.frame();
+    JsonWriter j;
+    j.begin_object();
+    j.value("program", program).value("version", FACET_VERSION).value("device", context_device);
+    j.value("image", fs::path(o.out).filename().string()).value("width", images.width).value("height", images.height);
+    j.value("encoding", fs::path(o.out).extension() == ".exr" ? "linear radiance x exposure" : "tone-mapped, gamma-encoded");
+    j.begin_object("camera");
+    write_vec3(j, "position", c.position);
+    write_vec3(j, "target", c.target);
+    write_vec3(j, "up", c.up);
+    j.value("yfov_deg", double(glm::degrees(c.yfov))).value("znear", double(c.znear));
+    j.value("projection", "perspective, infinite far plane, reversed Z");
+    j.end_object();
+    j.begin_object("model").value("source", session.scene().source).value("content_hash", session.scene().content_hash);
+    if (o.job.preset) j.value("preset", *o.job.preset);
+    j.end_object();
+    j.begin_object("environment");
+    if (const EnvironmentSource* env = session.environment())
+        j.value("source", env->name).value("content_hash", env->content_hash).value("width", env->width)
+            .value("height", env->height).value("ibl_intensity", double(o.job.ibl_intensity));
+    else
+        j.value("source", "none");
+    j.end_object();
+    j.value("exposure", double(f.display.exposure)).value("tonemap", tonemap_name(f.display.tonemap));
+    j.value("gamma", f.display.gamma > 0 ? std::to_string(f.display.gamma) : std::string("sRGB"));
+    j.value("msaa_samples", f.samples).value("skybox", f.skybox && session.environment() != nullptr);
+    j.value("smith", f.height_correlated ? "height-correlated (glTF)" : "Schlick-GGX k = (r+1)^2/8");
+    j.value("lights", uint32_t(f.lights.size()));
+    j.begin_array("views");
+    for (const std::string& name : view_files) j.value({}, name);
+    j.end_array();
+    j.begin_object("gpu_time_ms");
+    for (const PassTiming& t : session.bake_timings()) j.value(t.name, t.time_ms);
+    for (const PassTiming& t : images.timings) j.value(t.name, t.time_ms);
+    j.end_object();
+    j.end_object();
+    return j.str();
+}
+
+std::string stem_path(const std::string& out) {
+    fs::path p(out);
+    return (p.parent_path() / p.stem()).string();
+}
+
+int render(const Options& o) {
+    ContextOptions context_options;
+    context_options.device = o.device;
+    if (o.validation) context_options.validation = true;
+    auto created = Context::create(context_options);
+    if (!created) throw std::runtime_error("cannot start Vulkan: " + created.error().message);
+    Context& context = *created.value();
+    const fs::path parent = fs::path(o.out).parent_path();
+    if (!parent.empty() && !fs::is_directory(parent))
+        throw std::runtime_error(o.out + ": the directory " + parent.string() + " does not exist");
+    auto log = [](const std::string& line) { std::fprintf(stderr, "%s: %s\n", program, line.c_str()); };
+    auto session = RenderSession::create(context, o.job, log);
+    if (!session) throw std::runtime_error(session.error().message);
+    log("rendering " + std::to_string(o.job.frame.width) + "x" + std::to_string(o.job.frame.height) + " on " +
+        context.device_name());
+    auto images = (*session)->render_frame();
+    if (!images) throw std::runtime_error(images.error().message);
+
+    const std::string stem = stem_path(o.out);
+    const float exposure = o.job.frame.display.exposure;
+    std::vector<std::string> view_files;
+    for (auto& [view, texels] : images->views) view_files.push_back(stem + "." + view_name(view) + ".exr");
+    for (const std::string& f : view_files)
+        if (fs::exists(f)) log("replacing " + f);
+    if (fs::exists(o.out)) log("replacing " + o.out);
+    if (fs::path(o.out).extension() == ".exr") {
+        std::vector<float> exposed = images->hdr;
+        for (size_t i = 0; i < exposed.size(); ++i)
+            if (i % 4 != 3) exposed[i] *= exposure;
+        if (Status s = write_hdr_image(o.out, images->width, images->height, exposed); !s)
+            throw std::runtime_error(s.error().message);
+    } else if (Status s = write_ldr_image(o.out, images->width, images->height, images->ldr); !s) {
+        throw std::runtime_error(s.error().message);
+    }
+    for (size_t v = 0; v < images->views.size(); ++v)
+        if (Status s = write_hdr_image(view_files[v], images->width, images->height, images->views[v].second); !s)
+            throw std::runtime_error(s.error().message);
+    std::vector<std::string> view_names_written;
+    for (const std::string& f : view_files) view_names_written.push_back(fs::path(f).filename().string());
+    if (Status s = write_text_file(stem + ".json",
+                                   describe(o, **session, *images, context.device_name(), view_names_written));
+        !s)
+        throw std::runtime_error(s.error().message);
+    double gpu_ms = 0;
+    for (const PassTiming& t : images->timings) {
+        log("  " + t.name + ": " + std::to_string(t.time_ms) + " ms GPU");
+        gpu_ms += t.time_ms;
+    }
+    std::fprintf(stderr, "%s: wrote %s (frame %.1f ms GPU, %.0f ms wall)\n", program, o.out.c_str(), gpu_ms,
+                 images->wall_ms);
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::optional<Options> options;
+    try {
+        options = parse(argc, argv);
+        if (!options) return 0;
+    } catch (const std::invalid_argument& e) {
+        std::fprintf(stderr, "%s: error: %s\n", program, e.what());
+        return 2;
+    }
+    try {
+        return render(*options);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: error: %s\n", program, e.what());
+        return 1;
+    }
+}

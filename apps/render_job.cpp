@@ -1,0 +1,251 @@
+#include "render_job.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+
+#include "gpu/context.h"
+#include "gpu/transfer.h"
+#include "graph/compiled_graph.h"
+#include "render/gpu_scene.h"
+#include "scene/builtin_scenes.h"
+#include "scene/gltf_loader.h"
+#include "shader/program_cache.h"
+
+namespace facet {
+
+struct RenderSession::State {
+    Context* context = nullptr;
+    RenderJob job;
+    Scene scene;
+    std::optional<EnvironmentSource> env;
+    ShaderCompiler compiler;
+    std::unique_ptr<ProgramCache> programs;
+    std::unique_ptr<IblBake> ibl_bake;
+    CompiledGraph bake_graph;
+    std::unique_ptr<GraphRun> bake_run;
+    IblImages ibl_images;
+    IblSettings ibl_settings;
+    std::vector<PassTiming> bake_timings;
+    std::unique_ptr<GpuScene> gpu_scene;
+    std::unique_ptr<ForwardRenderer> renderer;
+    FrameSettings frame;
+};
+
+namespace {
+
+const ResourceState readable{VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                             VK_ACCESS_2_TRANSFER_READ_BIT};
+const ResourceState sampled_by_fragments{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                                         VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                                         VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+
+Result<glm::vec3> parse_vec3(const std::string& text, const std::string& what) {
+    glm::vec3 v;
+    char extra;
+    if (std::sscanf(text.c_str(), "%f,%f,%f%c", &v.x, &v.y, &v.z, &extra) != 3 || !std::isfinite(v.x) ||
+        !std::isfinite(v.y) || !std::isfinite(v.z))
+        return Error{what + ": expected X,Y,Z, got '" + text + "'"};
+    return v;
+}
+
+Result<float> parse_float(const std::string& text, const std::string& what) {
+    char* end = nullptr;
+    const float value = std::strtof(text.c_str(), &end);
+    if (text.empty() || *end || !std::isfinite(value)) return Error{what + ": '" + text + "' is not a number"};
+    return value;
+}
+
+}  // namespace
+
+Result<Light> parse_light(const std::string& text) {
+    std::istringstream in(text);
+    std::string type, item;
+    in >> type;
+    Light light;
+    if (type == "directional") light.type = LightType::directional;
+    else if (type == "point") light.type = LightType::point;
+    else if (type == "spot") light.type = LightType::spot;
+    else return Error{"--light '" + text + "': the type must be directional, point or spot"};
+    light.intensity = light.type == LightType::directional ? 3.0f : 100.0f;
+    bool has_position = false, has_direction = false;
+    while (in >> item) {
+        const auto eq = item.find('=');
+        if (eq == std::string::npos) return Error{"--light '" + text + "': expected KEY=VALUE, got '" + item + "'"};
+        const std::string key = item.substr(0, eq), value = item.substr(eq + 1);
+        const std::string what = "--light " + key;
+        if (key == "pos" || key == "dir" || key == "color") {
+            auto v = parse_vec3(value, what);
+            if (!v) return v.error();
+            if (key == "pos") light.position = *v, has_position = true;
+            if (key == "dir") light.direction = *v, has_direction = true;
+            if (key == "color") light.color = *v;
+        } else if (key == "intensity" || key == "range" || key == "inner" || key == "outer") {
+            auto f = parse_float(value, what);
+            if (!f) return f.error();
+            if (*f < 0) return Error{what + ": must not be negative"};
+            if (key == "intensity") light.intensity = *f;
+            if (key == "range") light.range = *f;
+            if (key == "inner") light.inner_cone = glm::radians(*f);
+            if (key == "outer") light.outer_cone = glm::radians(*f);
+        } else {
+            return Error{"--light '" + text + "': unknown key '" + key +
+                         "' (pos, dir, color, intensity, range, inner, outer)"};
+        }
+    }
+    if (light.type != LightType::point && (!has_direction || glm::length(light.direction) == 0.0f))
+        return Error{"--light '" + text + "': needs dir=X,Y,Z (non-zero)"};
+    if (light.type != LightType::directional && !has_position)
+        return Error{"--light '" + text + "': needs pos=X,Y,Z"};
+    if (light.type == LightType::spot && !(light.inner_cone < light.outer_cone && light.outer_cone <= glm::radians(90.0f)))
+        return Error{"--light '" + text + "': needs 0 <= inner < outer <= 90 degrees"};
+    if (light.type != LightType::point) light.direction = glm::normalize(light.direction);
+    return light;
+}
+
+RenderSession::RenderSession(std::unique_ptr<State> state) : state_(std::move(state)) {}
+RenderSession::~RenderSession() = default;
+const Scene& RenderSession::scene() const { return state_->scene; }
+const CameraView& RenderSession::camera() const { return state_->frame.camera; }
+const FrameSettings& RenderSession::frame() const { return state_->frame; }
+const EnvironmentSource* RenderSession::environment() const { return state_->env ? &*state_->env : nullptr; }
+const std::vector<PassTiming>& RenderSession::bake_timings() const { return state_->bake_timings; }
+size_t RenderSession::pipeline_variants() const { return state_->renderer->pipeline_variants(); }
+
+Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, const RenderJob& job,
+                                                             const ProgressFn& progress) {
+    std::optional<MaterialPreset> preset;
+    if (job.preset) {
+        preset = find_material_preset(*job.preset);
+        if (!preset)
+            return Error{"--preset: unknown preset '" + *job.preset + "' (" + material_preset_names() + ")"};
+    }
+    auto scene = job.model.rfind("builtin:", 0) == 0 ? builtin_scene(job.model, preset) : load_gltf(job.model);
+    if (!scene) return scene.error();
+    if (preset && !is_builtin_scene(job.model)) apply_material_preset(*scene, *preset);
+    if (progress)
+        progress("loaded " + job.model + ": " + std::to_string(scene->instances.size()) + " draws, " +
+                 std::to_string(scene->indices.size() / 3) + " triangles, " + std::to_string(scene->materials.size()) +
+                 " materials, " + std::to_string(scene->images.size()) + " textures");
+    return create(context, job, std::move(scene).value(), progress);
+}
+
+Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, const RenderJob& job, Scene scene,
+                                                             const ProgressFn& progress) {
+    auto s = std::make_unique<State>();
+    s->context = &context;
+    s->job = job;
+    auto say = [&](const std::string& line) {
+        if (progress) progress(line);
+    };
+    s->scene = std::move(scene);
+    if (s->scene.instances.empty()) return Error{s->scene.source + ": the scene has nothing to draw"};
+    s->frame = job.frame;
+    s->frame.lights = s->scene.lights;
+    s->frame.lights.insert(s->frame.lights.end(), job.extra_lights.begin(), job.extra_lights.end());
+    const auto [lo, hi] = s->scene.world_bounds();
+    const float aspect = float(s->frame.width) / float(std::max(1u, s->frame.height));
+    const float yfov = glm::radians(job.fov_deg);
+    if (job.gltf_camera) {
+        if (s->scene.cameras.empty()) return Error{job.model + ": --camera gltf, but the file has no camera"};
+        const Camera& c = s->scene.cameras.front();
+        s->frame.camera = {c.position, c.target, c.up, c.yfov, c.znear};
+    } else if (job.orbit) {
+        const glm::vec3 target = job.target.value_or(0.5f * (lo + hi));
+        s->frame.camera = orbit_camera(target, (*job.orbit)[0], (*job.orbit)[1], (*job.orbit)[2], yfov);
+    } else {
+        s->frame.camera = frame_bounds(lo, hi, yfov, aspect);
+        if (job.target) {
+            const float distance = glm::length(s->frame.camera.position - s->frame.camera.target);
+            s->frame.camera = orbit_camera(*job.target, 0.0f, 0.0f, distance, yfov);
+        }
+    }
+
+    s->programs = std::make_unique<ProgramCache>(context, s->compiler);
+    if (job.env != "none") {
+        auto env = resolve_environment(job.env, job.env_width, job.sanitize);
+        if (!env) return env.error();
+        s->env = std::move(env).value();
+        if (s->env->image.sanitized_texels)
+            say(job.env + ": replaced " + std::to_string(s->env->image.sanitized_texels) +
+                " NaN, Inf or negative texels with 0");
+        // Model no more than the scene needs: pure metals need no irradiance.
+        IblSettings requested = job.ibl;
+        requested.want_irradiance = false;
+        for (const Material& m : s->scene.materials)
+            if (m.metallic < 1.0f || m.metallic_roughness_texture.valid()) requested.want_irradiance = true;
+        s->ibl_settings = resolved_ibl_settings(requested, *s->env);
+        s->ibl_bake = std::make_unique<IblBake>(context, *s->programs);
+        RenderGraph graph;
+        auto images = s->ibl_bake->add_passes(graph, *s->env, s->ibl_settings);
+        if (!images) return images.error();
+        s->ibl_images = *images;
+        for (ImageHandle h : {s->ibl_images.cube, s->ibl_images.irradiance, s->ibl_images.specular, s->ibl_images.lut})
+            if (h.valid()) graph.export_image(h, sampled_by_fragments);
+        s->bake_graph = graph.compile();
+        s->bake_run = std::make_unique<GraphRun>(context, s->bake_graph);
+        say("baking " + job.env + " (" + std::to_string(s->env->width) + "x" + std::to_string(s->env->height) +
+            ", cube " + std::to_string(s->ibl_settings.cube_size) + "^2)");
+        s->bake_run->submit_and_wait();
+        s->bake_timings = s->bake_run->timings();
+    }
+    s->gpu_scene = std::make_unique<GpuScene>(context, s->scene);
+    s->renderer = std::make_unique<ForwardRenderer>(context, *s->programs);
+    return std::unique_ptr<RenderSession>(new RenderSession(std::move(s)));
+}
+
+Result<RenderedImages> RenderSession::render_frame() {
+    State& s = *state_;
+    Context& context = *s.context;
+    const auto start = std::chrono::steady_clock::now();
+    RenderGraph graph;
+    std::optional<IblInputs> ibl;
+    if (s.env) {
+        // The baked images enter the frame's graph as imported resources, already
+        // readable by fragment shaders, and are left that way for the next frame.
+        auto import = [&](ImageHandle h, const char* name) -> ImageHandle {
+            if (!h.valid()) return {};
+            const Image* baked = s.bake_run->transient_image(h);
+            return graph.import_image(name, {baked->handle(), baked->desc(), sampled_by_fragments,
+                                             sampled_by_fragments});
+        };
+        IblInputs in;
+        in.cube = import(s.ibl_images.cube, "environment cube");
+        in.irradiance = import(s.ibl_images.irradiance, "irradiance");
+        in.specular = import(s.ibl_images.specular, "specular");
+        in.lut = import(s.ibl_images.lut, "brdf lut");
+        in.specular_levels = s.ibl_settings.specular.levels;
+        in.cube_sampler = s.ibl_bake->cube_sampler().handle();
+        in.intensity = s.job.ibl_intensity;
+        ibl = in;
+    }
+    auto images = s.renderer->add_passes(graph, *s.gpu_scene, s.frame, ibl);
+    if (!images) return images.error();
+    graph.export_image(images->hdr, readable);
+    graph.export_image(images->ldr, readable);
+    for (auto& [view, handle] : images->views) graph.export_image(handle, readable);
+    CompiledGraph compiled = graph.compile();
+    GraphRun run(context, compiled);
+    run.submit_and_wait();
+
+    RenderedImages out;
+    out.width = s.frame.width;
+    out.height = s.frame.height;
+    auto read_floats = [&](ImageHandle h) {
+        auto bytes = read_image(context, *run.transient_image(h), 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        std::vector<float> values(bytes.size() / sizeof(float));
+        std::memcpy(values.data(), bytes.data(), values.size() * sizeof(float));
+        return values;
+    };
+    out.hdr = read_floats(images->hdr);
+    auto ldr = read_image(context, *run.transient_image(images->ldr), 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    out.ldr.resize(ldr.size());
+    std::memcpy(out.ldr.data(), ldr.data(), ldr.size());
+    for (auto& [view, handle] : images->views) out.views.push_back({view, read_floats(handle)});
+    out.timings = run.timings();
+    out.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+}  // namespace facet

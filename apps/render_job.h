@@ -1,0 +1,80 @@
+#pragma once
+// What facet-render (and facet-bench render) do: load a model and an environment, bake
+// the image-based lighting in one render graph, then draw the frame in a second graph
+// that imports the baked images (so a frame can be rendered again without baking).
+#include <array>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/result.h"
+#include "graph/graph_run.h"
+#include "ibl/ibl_bake.h"
+#include "render/forward_renderer.h"
+#include "scene/scene.h"
+
+namespace facet {
+
+class Context;
+
+struct RenderJob {
+    std::string model = "builtin:spheres";
+    std::string env = "builtin:sky";  // "none": no image-based lighting
+    std::optional<std::string> preset;
+    uint32_t env_width = 1024;  // built-in environments
+    bool sanitize = false;
+    IblSettings ibl;
+    FrameSettings frame;  // camera: see below; lights: the scene's plus extra_lights
+    std::optional<std::array<float, 3>> orbit;  // theta, phi (degrees), radius
+    std::optional<glm::vec3> target;
+    float fov_deg = 45.0f;
+    bool gltf_camera = false;  // the file's first camera instead of framing the bounds
+    std::vector<Light> extra_lights;
+    float ibl_intensity = 1.0f;
+};
+
+struct RenderedImages {
+    uint32_t width = 0, height = 0;
+    std::vector<float> hdr;    // RGBA linear radiance, before exposure
+    std::vector<uint8_t> ldr;  // RGBA8, display-encoded
+    std::vector<std::pair<View, std::vector<float>>> views;
+    std::vector<PassTiming> timings;
+    double wall_ms = 0;
+};
+
+using ProgressFn = std::function<void(const std::string& line)>;
+
+// Everything loaded and baked, ready to render frames.
+class RenderSession {
+public:
+    static Result<std::unique_ptr<RenderSession>> create(Context& context, const RenderJob& job,
+                                                         const ProgressFn& progress = {});
+    // The same with a scene built by the caller (job.model and job.preset are ignored).
+    static Result<std::unique_ptr<RenderSession>> create(Context& context, const RenderJob& job, Scene scene,
+                                                         const ProgressFn& progress = {});
+    ~RenderSession();
+
+    // Draws one frame with the job's settings and reads every image back.
+    Result<RenderedImages> render_frame();
+
+    const Scene& scene() const;
+    const CameraView& camera() const;
+    const FrameSettings& frame() const;
+    const EnvironmentSource* environment() const;  // nullptr without IBL
+    const std::vector<PassTiming>& bake_timings() const;
+    size_t pipeline_variants() const;
+
+    struct State;
+
+private:
+    explicit RenderSession(std::unique_ptr<State> state);
+    std::unique_ptr<State> state_;
+};
+
+// "directional dir=X,Y,Z [color=R,G,B] [intensity=LUX]", "point pos=X,Y,Z [range=M]
+// [intensity=CD] ...", "spot pos=... dir=... [inner=DEG] [outer=DEG] ...".
+Result<Light> parse_light(const std::string& text);
+
+}  // namespace facet

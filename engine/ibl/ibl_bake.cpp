@@ -1,0 +1,109 @@
+#include "ibl/ibl_bake.h"
+
+#include <algorithm>
+#include <cstring>
+
+#include "gpu/context.h"
+#include "gpu/resources.h"
+#include "graph/transfer_passes.h"
+#include "ibl/environment_cube.h"
+#include "shader/program_cache.h"
+
+namespace facet {
+
+std::string builtin_environment_names() { return "builtin:sky, builtin:white"; }
+
+Result<EnvironmentSource> resolve_environment(const std::string& name, uint32_t builtin_width, bool sanitize) {
+    EnvironmentSource source;
+    source.name = name;
+    if (name == "builtin:sky") source.sky = ProceduralSky{};
+    else if (name == "builtin:white") source.sky = ProceduralSky::white();
+    else if (name.rfind("builtin:", 0) == 0)
+        return Error{name + ": unknown built-in environment (" + builtin_environment_names() + ")"};
+    if (source.sky) {
+        if (builtin_width < 2 || builtin_width % 2)
+            return Error{name + ": the width of a built-in environment must be even and at least 2"};
+        source.content_hash = source.sky->content_hash();
+        source.width = builtin_width;
+        source.height = builtin_width / 2;
+        return source;
+    }
+    auto image = load_environment(name, {sanitize});
+    if (!image) return image.error();
+    source.image = std::move(image).value();
+    source.content_hash = source.image.content_hash;
+    source.width = source.image.width;
+    source.height = source.image.height;
+    return source;
+}
+
+IblSettings resolved_ibl_settings(const IblSettings& settings, const EnvironmentSource& source) {
+    IblSettings s = settings;
+    if (!s.cube_size) s.cube_size = cube_size_for(source.height);
+    s.specular.levels = std::min(s.specular.levels, full_mip_count(s.cube_size));
+    return s;
+}
+
+IblBake::IblBake(Context& context, ProgramCache& programs)
+    : context_(context),
+      programs_(programs),
+      equirect_sampler_(std::make_unique<Sampler>(context, VK_FILTER_LINEAR, false, true, "equirect sampler")),
+      cube_sampler_(std::make_unique<Sampler>(context, VK_FILTER_LINEAR, true, false, "cube sampler")) {}
+
+IblBake::~IblBake() = default;
+
+Result<IblImages> IblBake::add_passes(RenderGraph& graph, const EnvironmentSource& source, const IblSettings& s) {
+    IblImages out;
+    ImageDesc equirect_desc;
+    equirect_desc.width = source.width;
+    equirect_desc.height = source.height;
+    out.equirect = graph.create_image("environment", equirect_desc);
+    if (source.sky) {
+        auto sky = add_procedural_sky_pass(graph, programs_, *source.sky, out.equirect);
+        if (!sky) return sky.error();
+        out.equirect = *sky;
+    } else {
+        const std::vector<float>& texels = source.image.rgba;
+        staging_ = std::make_unique<Buffer>(context_, texels.size() * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                            MemoryUsage::upload, "environment upload");
+        std::memcpy(staging_->mapped(), texels.data(), texels.size() * sizeof(float));
+        staging_->flush();
+        auto staged = graph.import_buffer(
+            "environment texels",
+            {staging_->handle(), staging_->size(),
+             {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_WRITE_BIT}, {}});
+        out.equirect = add_upload_pass(graph, "upload environment", staged, out.equirect);
+    }
+    auto cube = add_environment_cube_passes(graph, programs_, *equirect_sampler_, out.equirect,
+                                            graph.create_image("environment cube",
+                                                               environment_cube_desc(s.cube_size,
+                                                                                     full_mip_count(s.cube_size))));
+    if (!cube) return cube.error();
+    out.cube = *cube;
+    if (s.want_irradiance) {
+        auto irradiance = add_irradiance_passes(graph, programs_, *cube_sampler_, out.cube,
+                                                graph.create_image("irradiance",
+                                                                   environment_cube_desc(s.irradiance.size, 1)),
+                                                s.irradiance, &out.sh9, out.equirect);
+        if (!irradiance) return irradiance.error();
+        out.irradiance = *irradiance;
+    }
+    if (s.want_specular) {
+        auto specular = add_specular_passes(graph, programs_, *cube_sampler_, out.cube,
+                                            graph.create_image("specular",
+                                                               environment_cube_desc(s.cube_size, s.specular.levels)),
+                                            s.specular, out.equirect);
+        if (!specular) return specular.error();
+        out.specular = *specular;
+    }
+    if (s.want_lut) {
+        ImageDesc lut_desc;
+        lut_desc.width = lut_desc.height = s.lut.size;
+        auto lut = add_brdf_lut_passes(graph, programs_, s.lut, graph.create_image("brdf lut", lut_desc));
+        if (!lut) return lut.error();
+        out.lut = *lut;
+    }
+    return out;
+}
+
+}  // namespace facet

@@ -1,0 +1,85 @@
+#pragma once
+// The forward PBR frame as render-graph passes: skybox (when on and an environment is
+// given), the forward pass (opaque and masked primitives, then blended ones sorted back
+// to front, into an MSAA HDR target resolved at the end), the display transform, and
+// one single-sample pass per requested view (AOV). Only what the frame needs is added:
+// no skybox when it is off, no IBL inputs without an environment.
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "core/result.h"
+#include "gpu/resources.h"
+#include "graph/render_graph.h"
+#include "render/camera.h"
+#include "render/tonemap.h"
+#include "render/views.h"
+#include "scene/scene.h"
+
+namespace facet {
+
+class Context;
+class GpuScene;
+class Pipeline;
+class ProgramCache;
+
+// Image-based lighting baked earlier in the same graph (ibl/ibl_bake.h).
+struct IblInputs {
+    ImageHandle cube;        // environment cube (skybox)
+    ImageHandle irradiance;  // E/pi cube; invalid: no diffuse IBL (a scene of pure metals)
+    ImageHandle specular;    // prefiltered cube, roughness level / (levels - 1)
+    ImageHandle lut;         // split-sum A, B
+    uint32_t specular_levels = 1;
+    VkSampler cube_sampler = VK_NULL_HANDLE;  // linear, mipmapped, clamped
+    float intensity = 1.0f;
+};
+
+struct FrameSettings {
+    uint32_t width = 1280, height = 720;
+    uint32_t samples = 4;  // MSAA of the final colour (views are single-sample)
+    CameraView camera;
+    DisplaySettings display;
+    bool skybox = true;
+    bool height_correlated = false;  // glTF's Smith visibility for punctual lights
+    std::vector<Light> lights;       // every punctual light of the frame
+    std::vector<View> views;         // extra images, each RGBA32F, one sample per pixel
+};
+
+struct FrameImages {
+    ImageHandle hdr;  // RGBA32F linear radiance, before exposure
+    ImageHandle ldr;  // RGBA8, tone-mapped and encoded
+    std::vector<std::pair<View, ImageHandle>> views;
+};
+
+class ForwardRenderer {
+public:
+    ForwardRenderer(Context& context, ProgramCache& programs);
+    ~ForwardRenderer();
+
+    // The host-visible frame data written here is read when the graph runs, so one
+    // frame at a time per renderer.
+    Result<FrameImages> add_passes(RenderGraph& graph, const GpuScene& scene, const FrameSettings& settings,
+                                   const std::optional<IblInputs>& ibl);
+
+    // Pipeline variants created so far (each a distinct feature set).
+    size_t pipeline_variants() const { return variants_.size(); }
+
+private:
+    struct DrawList {
+        std::vector<uint32_t> opaque;  // instance indices
+        std::vector<uint32_t> blend;   // back to front
+    };
+    Result<const Pipeline*> material_pipeline(const GpuScene& scene, uint32_t material, View view,
+                                              VkSampleCountFlagBits samples, bool ibl, bool height_correlated);
+    Result<const Pipeline*> skybox_pipeline(VkSampleCountFlagBits samples);
+    DrawList draw_list(const GpuScene& scene, const CameraView& camera) const;
+
+    Context& context_;
+    ProgramCache& programs_;
+    Buffer frame_, lights_;
+    Sampler nearest_, lut_sampler_;
+    std::set<std::string> variants_;
+};
+
+}  // namespace facet

@@ -1,0 +1,200 @@
+#include "render/gpu_scene.h"
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+#include <span>
+
+#include "core/result.h"
+#include "gpu/context.h"
+#include "gpu/transfer.h"
+
+namespace facet {
+namespace {
+
+template <class T>
+std::span<const std::byte> bytes_of(const std::vector<T>& v) {
+    return std::as_bytes(std::span<const T>(v));
+}
+
+Buffer make_buffer(Context& context, std::span<const std::byte> data, VkBufferUsageFlags usage, const char* name) {
+    // Never zero-sized: a scene without lights or textures still binds every buffer.
+    Buffer buffer(context, std::max<VkDeviceSize>(data.size(), 64), usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                  MemoryUsage::gpu_only, name);
+    if (!data.empty()) upload_buffer(context, buffer, data);
+    return buffer;
+}
+
+VkSamplerAddressMode address_mode(uint32_t wrap) {
+    switch (wrap) {
+    case 1: return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    case 2: return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
+    default: return VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    }
+}
+
+VkSamplerCreateInfo sampler_info(const TextureSampler& s) {
+    VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    info.magFilter = s.mag_linear ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
+    info.minFilter = s.min_linear ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
+    info.mipmapMode = s.mip_linear ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    info.addressModeU = address_mode(s.wrap_u);
+    info.addressModeV = address_mode(s.wrap_v);
+    info.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    info.maxLod = s.use_mips ? VK_LOD_CLAMP_NONE : 0.0f;
+    return info;
+}
+
+void image_barrier(VkCommandBuffer cmd, VkImage image, uint32_t mip, uint32_t mip_count, VkImageLayout from,
+                   VkImageLayout to, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
+                   VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access) {
+    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    b.srcStageMask = src_stage;
+    b.srcAccessMask = src_access;
+    b.dstStageMask = dst_stage;
+    b.dstAccessMask = dst_access;
+    b.oldLayout = from;
+    b.newLayout = to;
+    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = image;
+    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, mip, mip_count, 0, 1};
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.imageMemoryBarrierCount = 1;
+    dep.pImageMemoryBarriers = &b;
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+// Uploads mip 0 and fills the chain with linear 2x2 blits (sRGB images filter in linear
+// space), leaving every level SHADER_READ_ONLY for fragment shaders.
+Image upload_texture(Context& context, const TextureImage& t, bool srgb) {
+    ImageDesc desc;
+    desc.format = srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
+    desc.width = t.width;
+    desc.height = t.height;
+    desc.mip_levels = std::bit_width(std::max(t.width, t.height));
+    Image image(context, desc,
+                VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                t.name + (srgb ? " (sRGB)" : " (linear)"));
+    Buffer staging(context, t.rgba.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::upload, "texture staging");
+    std::memcpy(staging.mapped(), t.rgba.data(), t.rgba.size());
+    staging.flush();
+    context.submit_and_wait([&](VkCommandBuffer cmd) {
+        VkImage img = image.handle();
+        image_barrier(cmd, img, 0, desc.mip_levels, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                      VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        VkBufferImageCopy copy{};
+        copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        copy.imageExtent = {t.width, t.height, 1};
+        vkCmdCopyBufferToImage(cmd, staging.handle(), img, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+        for (uint32_t m = 1; m < desc.mip_levels; ++m) {
+            image_barrier(cmd, img, m - 1, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                          VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+            VkImageBlit blit{};
+            blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m - 1, 0, 1};
+            blit.srcOffsets[1] = {int32_t(desc.mip_width(m - 1)), int32_t(desc.mip_height(m - 1)), 1};
+            blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m, 0, 1};
+            blit.dstOffsets[1] = {int32_t(desc.mip_width(m)), int32_t(desc.mip_height(m)), 1};
+            vkCmdBlitImage(cmd, img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, img, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                           &blit, VK_FILTER_LINEAR);
+        }
+        if (desc.mip_levels > 1)
+            image_barrier(cmd, img, 0, desc.mip_levels - 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                          VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                          VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+        image_barrier(cmd, img, desc.mip_levels - 1, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                      VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    });
+    return image;
+}
+
+Image solid_image(Context& context, VkFormat format, std::array<uint8_t, 4> rgba, uint32_t layers, const char* name) {
+    ImageDesc desc;
+    desc.format = format;
+    desc.array_layers = layers;
+    desc.cube = layers == 6;
+    Image image(context, desc, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, name);
+    const auto data = std::as_bytes(std::span<const uint8_t>(rgba));
+    for (uint32_t layer = 0; layer < layers; ++layer)
+        upload_image(context, image, 0, layer, data, VK_IMAGE_LAYOUT_UNDEFINED,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    return image;
+}
+
+}  // namespace
+
+GpuScene::GpuScene(Context& context, const Scene& scene)
+    : context_(context),
+      scene_(scene),
+      default_sampler_(context, sampler_info({}), "default texture sampler") {
+    vertices_ = make_buffer(context, bytes_of(scene.vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "scene vertices");
+    indices_ = make_buffer(context, bytes_of(scene.indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "scene indices");
+    std::vector<GpuInstance> instances;
+    for (const Instance& i : scene.instances)
+        instances.push_back({i.world, glm::mat4(glm::transpose(glm::inverse(glm::mat3(i.world))))});
+    instances_ = make_buffer(context, bytes_of(instances), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "scene instances");
+    std::vector<GpuMaterial> materials;
+    for (const Material& m : scene.materials)
+        materials.push_back({m.base_color, glm::vec4(m.emissive, m.dielectric_f0),
+                             glm::vec4(m.metallic, m.roughness, m.normal_scale, m.occlusion_strength),
+                             glm::vec4(m.alpha_cutoff, m.specular_factor, 0.0f, 0.0f)});
+    materials_ = make_buffer(context, bytes_of(materials), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "scene materials");
+
+    white_srgb_ = solid_image(context, VK_FORMAT_R8G8B8A8_SRGB, {255, 255, 255, 255}, 1, "default white (sRGB)");
+    white_linear_ = solid_image(context, VK_FORMAT_R8G8B8A8_UNORM, {255, 255, 255, 255}, 1, "default white");
+    flat_normal_ = solid_image(context, VK_FORMAT_R8G8B8A8_UNORM, {128, 128, 255, 255}, 1, "default flat normal");
+    black_2d_ = solid_image(context, VK_FORMAT_R8G8B8A8_UNORM, {0, 0, 0, 255}, 1, "default black");
+    black_cube_ = solid_image(context, VK_FORMAT_R8G8B8A8_UNORM, {0, 0, 0, 255}, 6, "default black cube");
+    black_2d_view_ = black_2d_.view();
+    black_cube_view_ = black_cube_.view();
+    for (size_t i = 0; i < scene.samplers.size(); ++i)
+        samplers_.emplace_back(context, sampler_info(scene.samplers[i]), "gltf sampler " + std::to_string(i));
+
+    for (const Material& m : scene.materials) {
+        const TextureRef refs[] = {m.base_color_texture, m.metallic_roughness_texture, m.normal_texture,
+                                   m.occlusion_texture, m.emissive_texture};
+        std::array<GpuTexture, size_t(TextureSlot::count)> slots{};
+        std::array<bool, size_t(TextureSlot::count)> has{};
+        for (size_t s = 0; s < slots.size(); ++s) {
+            const bool srgb = s == size_t(TextureSlot::base_color) || s == size_t(TextureSlot::emissive);
+            const TextureRef& ref = refs[s];
+            if (ref.valid() && size_t(ref.image) < scene.images.size()) {
+                Image& image = texture_image(uint32_t(ref.image), srgb);
+                slots[s].view = image.view();
+                slots[s].sampler = ref.sampler >= 0 && size_t(ref.sampler) < samplers_.size()
+                                       ? samplers_[size_t(ref.sampler)].handle()
+                                       : default_sampler_.handle();
+                has[s] = true;
+            } else {
+                Image& fallback = s == size_t(TextureSlot::normal) ? flat_normal_ : srgb ? white_srgb_ : white_linear_;
+                slots[s] = {fallback.view(), default_sampler_.handle()};
+            }
+        }
+        material_textures_.push_back(slots);
+        material_has_.push_back(has);
+    }
+}
+
+Image& GpuScene::texture_image(uint32_t image, bool srgb) {
+    const auto key = std::make_pair(image, srgb);
+    auto it = textures_.find(key);
+    if (it == textures_.end()) {
+        it = textures_.emplace(key, upload_texture(context_, scene_.images[image], srgb)).first;
+        texture_bytes_ += scene_.images[image].rgba.size() * 4 / 3;
+    }
+    return it->second;
+}
+
+GpuTexture GpuScene::texture(uint32_t material, TextureSlot slot) const {
+    return material_textures_.at(material)[size_t(slot)];
+}
+
+bool GpuScene::has_texture(uint32_t material, TextureSlot slot) const {
+    return material_has_.at(material)[size_t(slot)];
+}
+
+}  // namespace facet

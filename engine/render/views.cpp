@@ -1,0 +1,50 @@
+#include "render/views.h"
+
+#include <sstream>
+
+namespace facet {
+namespace {
+constexpr const char* names[] = {"final", "normal", "position", "basecolor", "metallic",
+                                 "roughness", "occlusion", "emissive", "D", "F", "G",
+                                 "diffuse", "specular", "irradiance", "prefiltered"};
+constexpr int count = sizeof(names) / sizeof(names[0]);
+}  // namespace
+
+const char* view_name(View view) {
+    const int i = static_cast<int>(view);
+    return i >= 0 && i < count ? names[i] : "unknown";
+}
+
+std::optional<View> parse_view(const std::string& name) {
+    for (int i = 0; i < count; ++i)
+        if (name == names[i]) return static_cast<View>(i);
+    return std::nullopt;
+}
+
+std::string view_names() {
+    std::string list;
+    for (int i = 1; i < count; ++i) list += std::string(i > 1 ? "," : "") + names[i];
+    return list;
+}
+
+std::optional<std::vector<View>> parse_view_list(const std::string& list, std::string* error) {
+    std::vector<View> views;
+    std::stringstream in(list);
+    std::string item;
+    while (std::getline(in, item, ',')) {
+        if (item.empty()) continue;
+        if (item == "all") {
+            for (int i = 1; i < count; ++i) views.push_back(static_cast<View>(i));
+            continue;
+        }
+        auto view = parse_view(item);
+        if (!view || *view == View::final_color) {
+            if (error) *error = "unknown view '" + item + "' (one of: all," + view_names() + ")";
+            return std::nullopt;
+        }
+        views.push_back(*view);
+    }
+    return views;
+}
+
+}  // namespace facet

@@ -1,0 +1,36 @@
+#pragma once
+// The images the forward pass can write (design.md's AOVs): the final colour, the
+// surface (normal, position, material inputs) and the thesis' shading components.
+// Numbers match shaders/render/views.glsl.
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace facet {
+
+enum class View : int {
+    final_color = 0,
+    normal = 1,       // world space, unit
+    position = 2,     // world space, metres
+    basecolor = 3,
+    metallic = 4,
+    roughness = 5,
+    occlusion = 6,
+    emissive = 7,
+    D = 8,            // D_GGX for the first light's half vector (h = n without lights)
+    F = 9,            // F_Schlick for the same h
+    G = 10,           // G_Smith (Schlick-GGX) for the first light (mirror direction without)
+    diffuse = 11,     // radiance from the diffuse lobe (lights + IBL)
+    specular = 12,    // radiance from the specular lobe (lights + IBL)
+    irradiance = 13,  // irradiance cube at n (E/pi)
+    prefiltered = 14, // prefiltered specular at R
+};
+
+const char* view_name(View view);
+std::optional<View> parse_view(const std::string& name);
+// "normal,position,..." (every view but the final colour).
+std::string view_names();
+// A comma-separated list; the error names the unknown entry.
+std::optional<std::vector<View>> parse_view_list(const std::string& list, std::string* error);
+
+}  // namespace facet

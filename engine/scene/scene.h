@@ -1,0 +1,140 @@
+#pragma once
+// A scene as the renderer draws it: flat vertex and index arrays, materials in glTF's
+// metallic-roughness model, decoded textures, and instances (a primitive placed by its
+// node's world matrix). Loaders (glTF, built-ins) fill it; nothing here touches Vulkan.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace facet {
+
+struct Vertex {
+    glm::vec3 position{0.0f};
+    glm::vec3 normal{0.0f, 0.0f, 1.0f};
+    glm::vec2 uv{0.0f};
+    glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f};  // xyz tangent, w = handedness (glTF)
+};
+
+// glTF sampler state, in Vulkan terms.
+struct TextureSampler {
+    bool mag_linear = true;
+    bool min_linear = true;
+    bool mip_linear = true;
+    bool use_mips = true;
+    // 0 = repeat, 1 = clamp to edge, 2 = mirrored repeat (VkSamplerAddressMode order)
+    uint32_t wrap_u = 0, wrap_v = 0;
+    bool operator==(const TextureSampler&) const = default;
+};
+
+// Decoded 8-bit RGBA texels, row 0 = the file's top row (glTF uv (0,0) is top-left).
+struct TextureImage {
+    std::string name;  // file name or "image N"
+    uint32_t width = 0, height = 0;
+    std::vector<uint8_t> rgba;
+};
+
+struct TextureRef {
+    int32_t image = -1;    // index into Scene::images; -1 = none
+    int32_t sampler = -1;  // index into Scene::samplers; -1 = default sampler
+    uint32_t uv_set = 0;   // only TEXCOORD_0 is loaded; a material using another set is an error
+    bool valid() const { return image >= 0; }
+};
+
+enum class AlphaMode { opaque, mask, blend };
+
+struct Material {
+    std::string name;
+    glm::vec4 base_color{1.0f};
+    float metallic = 1.0f;
+    float roughness = 1.0f;
+    glm::vec3 emissive{0.0f};
+    float normal_scale = 1.0f;
+    float occlusion_strength = 1.0f;
+    AlphaMode alpha_mode = AlphaMode::opaque;
+    float alpha_cutoff = 0.5f;
+    bool double_sided = false;
+    // F0 of the dielectric part: ((ior - 1) / (ior + 1))^2, 0.04 for glTF's ior 1.5
+    // (KHR_materials_ior); presets set it from the thesis' reflectance table.
+    float dielectric_f0 = 0.04f;
+    // Scales the specular lobe and its Fresnel (KHR_materials_specular's factor):
+    // 0 leaves a Lambert-only material, as the white-furnace test needs.
+    float specular_factor = 1.0f;
+    TextureRef base_color_texture;          // sRGB
+    TextureRef metallic_roughness_texture;  // linear: G = roughness, B = metalness
+    TextureRef normal_texture;              // linear, tangent space
+    TextureRef occlusion_texture;           // linear: R
+    TextureRef emissive_texture;            // sRGB
+};
+
+// A contiguous range of Scene::indices (triangle list) using one material.
+struct Primitive {
+    uint32_t first_index = 0;
+    uint32_t index_count = 0;
+    uint32_t vertex_offset = 0;  // added to every index of the range
+    uint32_t vertex_count = 0;
+    uint32_t material = 0;       // index into Scene::materials
+    glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};  // object space
+};
+
+struct Mesh {
+    std::string name;
+    std::vector<uint32_t> primitives;  // indices into Scene::primitives
+};
+
+// One primitive drawn with one world matrix (the node hierarchy, flattened).
+struct Instance {
+    uint32_t primitive = 0;
+    glm::mat4 world{1.0f};
+    std::string node;  // node name, for messages
+};
+
+enum class LightType { directional, point, spot };
+
+// KHR_lights_punctual units: directional in lux (lm/m^2), point and spot in candela
+// (lm/sr). Directions point where the light travels (glTF: the node's -Z).
+struct Light {
+    LightType type = LightType::directional;
+    glm::vec3 color{1.0f};
+    float intensity = 1.0f;
+    glm::vec3 position{0.0f};
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};
+    float range = 0.0f;  // 0 = infinite
+    float inner_cone = 0.0f;                 // radians
+    float outer_cone = 0.7853981633974483f;  // radians (pi/4, glTF's default)
+};
+
+struct Camera {
+    std::string name;
+    glm::vec3 position{0.0f, 0.0f, 3.0f};
+    glm::vec3 target{0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float yfov = 0.7853981633974483f;  // radians
+    float znear = 0.05f;
+    float zfar = 0.0f;  // 0 = infinite (reverse-free, far plane chosen from the bounds)
+    bool orthographic = false;
+    float ymag = 1.0f;  // orthographic half height
+};
+
+struct Scene {
+    std::string source;        // file path or builtin:NAME
+    std::string content_hash;  // of the file bytes (and its buffers and images)
+    std::vector<Vertex> vertices;
+    std::vector<uint32_t> indices;
+    std::vector<Primitive> primitives;
+    std::vector<Mesh> meshes;
+    std::vector<Material> materials;
+    std::vector<TextureImage> images;
+    std::vector<TextureSampler> samplers;
+    std::vector<Instance> instances;
+    std::vector<Light> lights;
+    std::vector<Camera> cameras;  // in world space, from camera nodes
+
+    // World-space bounds of all instances (min > max when empty).
+    std::pair<glm::vec3, glm::vec3> world_bounds() const;
+};
+
+}  // namespace facet

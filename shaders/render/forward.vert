@@ -1,0 +1,28 @@
+#version 460
+// The thesis' vertex stage: object -> world position, normal (and tangent for normal
+// maps), uv; clip position from the camera's view-projection.
+#include "render/forward_interface.glsl"
+
+layout(location = 0) in vec3 in_position;
+layout(location = 1) in vec3 in_normal;
+layout(location = 2) in vec2 in_uv;
+layout(location = 3) in vec4 in_tangent;
+
+layout(location = 0) out vec3 out_world;
+layout(location = 1) out vec3 out_normal;
+layout(location = 2) out vec2 out_uv;
+#ifdef HAS_NORMAL_MAP
+layout(location = 3) out vec4 out_tangent;
+#endif
+
+void main() {
+    InstanceData instance = instances[draw.instance];
+    vec4 world = instance.world * vec4(in_position, 1.0);
+    out_world = world.xyz;
+    out_normal = mat3(instance.normal_matrix) * in_normal;
+    out_uv = in_uv;
+#ifdef HAS_NORMAL_MAP
+    out_tangent = vec4(mat3(instance.world) * in_tangent.xyz, in_tangent.w);
+#endif
+    gl_Position = frame.view_projection * world;
+}

@@ -1,0 +1,50 @@
+#ifndef FACET_FORWARD_INTERFACE_GLSL
+#define FACET_FORWARD_INTERFACE_GLSL
+// What the forward pass's shaders share with engine/render/forward_pass.cpp: the
+// descriptor bindings, the buffer layouts and the push constants. Keep in step with
+// the C++ structs there (std140 / std430, vec4-aligned).
+
+layout(binding = 0, std140) uniform Frame {
+    mat4 view_projection;
+    vec4 camera_position;  // xyz
+    vec4 ibl;              // x: intensity, y: highest specular level (roughness 1)
+    uvec4 counts;          // x: punctual lights
+} frame;
+
+struct Light {
+    vec4 position_range;    // xyz position, w range (0 = infinite)
+    vec4 direction_type;    // xyz direction the light travels, w: 0 directional, 1 point, 2 spot
+    vec4 color_intensity;   // rgb colour, a intensity (lux or candela)
+    vec4 cone;              // x: 1 / (cos inner - cos outer), y: -cos outer * x
+};
+layout(binding = 1, std430) readonly buffer Lights { Light lights[]; };
+
+struct InstanceData {
+    mat4 world;
+    mat4 normal_matrix;  // inverse transpose of world's 3x3, in a mat4 for alignment
+};
+layout(binding = 2, std430) readonly buffer Instances { InstanceData instances[]; };
+
+struct MaterialData {
+    vec4 base_color;
+    vec4 emissive_f0;  // rgb emissive, a dielectric F0
+    vec4 factors;      // metallic, roughness, normal scale, occlusion strength
+    vec4 extra;        // alpha cutoff, specular factor
+};
+layout(binding = 3, std430) readonly buffer Materials { MaterialData materials[]; };
+
+layout(binding = 4) uniform samplerCube irradiance_map;  // E / pi
+layout(binding = 5) uniform samplerCube specular_map;    // GGX prefiltered, roughness by level
+layout(binding = 6) uniform sampler2D brdf_lut;          // A, B by (NdotV, roughness)
+layout(binding = 7) uniform sampler2D base_color_map;
+layout(binding = 8) uniform sampler2D metallic_roughness_map;
+layout(binding = 9) uniform sampler2D normal_map;
+layout(binding = 10) uniform sampler2D occlusion_map;
+layout(binding = 11) uniform sampler2D emissive_map;
+
+layout(push_constant) uniform Draw {
+    uint instance;
+    uint material;
+} draw;
+
+#endif

@@ -1,0 +1,310 @@
+// The forward pass on lavapipe, checked against closed forms computed here: the white
+// furnace, energy (no material reflects more than it receives), a directional light's
+// Lambert radiance in lux, spot cones, alpha modes and blending order, double-sided
+// primitives, the component views against independent formulas, and the graph holding
+// only what the frame needs. The fixture fails on any validation message.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "render_job.h"
+#include "scene/builtin_scenes.h"
+#include "support/gpu_test.h"
+
+namespace facet {
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+struct Pixel {
+    float r, g, b, a;
+};
+
+Pixel at(const std::vector<float>& rgba, uint32_t width, uint32_t x, uint32_t y) {
+    const float* p = &rgba[(size_t(y) * width + x) * 4];
+    return {p[0], p[1], p[2], p[3]};
+}
+
+class ForwardRenderTest : public test::GpuTest {
+protected:
+    RenderJob small_job(const std::string& model, const std::string& env) {
+        RenderJob job;
+        job.model = model;
+        job.env = env;
+        job.env_width = 64;
+        job.frame.width = 64;
+        job.frame.height = 64;
+        job.ibl.specular.sample_count = 256;
+        job.ibl.lut.size = 32;
+        job.ibl.lut.sample_count = 512;
+        return job;
+    }
+    RenderedImages render(const RenderJob& job, std::unique_ptr<RenderSession>* keep = nullptr) {
+        auto session = RenderSession::create(ctx(), job);
+        EXPECT_TRUE(session) << (session ? "" : session.error().message);
+        if (!session) return {};
+        auto images = (*session)->render_frame();
+        EXPECT_TRUE(images) << (images ? "" : images.error().message);
+        if (keep) *keep = std::move(*session);
+        return images ? *images : RenderedImages{};
+    }
+    RenderedImages render(const RenderJob& job, Scene scene) {
+        auto session = RenderSession::create(ctx(), job, std::move(scene));
+        EXPECT_TRUE(session) << (session ? "" : session.error().message);
+        if (!session) return {};
+        auto images = (*session)->render_frame();
+        EXPECT_TRUE(images) << (images ? "" : images.error().message);
+        return images ? *images : RenderedImages{};
+    }
+};
+
+// A quad in the z = z0 plane facing +Z (or -Z when flipped), 2x2 metres, one material.
+uint32_t add_quad(Scene& scene, uint32_t material, float z0, bool facing_away) {
+    Primitive p;
+    p.first_index = uint32_t(scene.indices.size());
+    p.vertex_offset = uint32_t(scene.vertices.size());
+    p.material = material;
+    const glm::vec3 n(0.0f, 0.0f, facing_away ? -1.0f : 1.0f);
+    const glm::vec2 corners[] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    for (auto c : corners) scene.vertices.push_back({glm::vec3(c, z0), n, c * 0.5f + 0.5f});
+    if (facing_away) scene.indices.insert(scene.indices.end(), {0, 2, 1, 0, 3, 2});
+    else scene.indices.insert(scene.indices.end(), {0, 1, 2, 0, 2, 3});
+    p.index_count = 6;
+    p.vertex_count = 4;
+    p.bounds_min = glm::vec3(-1, -1, z0);
+    p.bounds_max = glm::vec3(1, 1, z0);
+    scene.primitives.push_back(p);
+    Instance instance;
+    instance.primitive = uint32_t(scene.primitives.size() - 1);
+    scene.instances.push_back(instance);
+    return instance.primitive;
+}
+
+// Emission only: what a pixel shows is exactly the material's emissive colour.
+Material emitter(glm::vec3 emissive, float alpha, AlphaMode mode) {
+    Material m;
+    m.base_color = glm::vec4(0.0f, 0.0f, 0.0f, alpha);
+    m.metallic = 0.0f;
+    m.specular_factor = 0.0f;
+    m.emissive = emissive;
+    m.alpha_mode = mode;
+    return m;
+}
+
+TEST_F(ForwardRenderTest, WhiteFurnaceLambertSphereIsOneEverywhere) {
+    RenderJob job = small_job("builtin:sphere", "builtin:white");
+    job.preset = "lambert";
+    job.frame.skybox = false;
+    const RenderedImages images = render(job);
+    ASSERT_EQ(images.hdr.size(), 64u * 64u * 4u);
+    int covered = 0;
+    double worst = 0;
+    for (uint32_t y = 0; y < 64; ++y)
+        for (uint32_t x = 0; x < 64; ++x) {
+            Pixel p = at(images.hdr, 64, x, y);
+            if (p.a < 1.0f) continue;  // background or a partly covered edge
+            ++covered;
+            for (float c : {p.r, p.g, p.b}) worst = std::max(worst, std::abs(double(c) - 1.0));
+        }
+    EXPECT_GT(covered, 1000);
+    EXPECT_LT(worst, 1e-3) << "radiance 1 in, albedo 1: every pixel must be 1";
+}
+
+// Under uniform radiance 1, no preset and no roughness/metalness reflects more than 1.
+TEST_F(ForwardRenderTest, NoMaterialReflectsMoreThanItReceives) {
+    double worst = 0;
+    std::vector<std::optional<std::string>> presets = {std::nullopt};
+    for (const MaterialPreset& p : material_presets()) presets.push_back(p.name);
+    for (const auto& preset : presets) {
+        RenderJob job = small_job("builtin:spheres", "builtin:white");
+        job.frame.width = 112;
+        job.frame.height = 112;
+        job.frame.skybox = false;
+        job.preset = preset;
+        // Albedo 1: the brightest a material can be.
+        SpheresGrid grid;
+        grid.albedo = glm::vec3(1.0f);
+        auto scene = builtin_scene("builtin:spheres", preset ? find_material_preset(*preset) : std::nullopt, grid);
+        ASSERT_TRUE(scene);
+        const RenderedImages images = render(job, std::move(scene).value());
+        for (size_t i = 0; i + 3 < images.hdr.size(); i += 4)
+            for (int c = 0; c < 3; ++c) worst = std::max(worst, double(images.hdr[i + c]));
+    }
+    EXPECT_LE(worst, 1.0 + 2e-3) << "brightest pixel " << worst;
+    EXPECT_GT(worst, 0.9);
+}
+
+// A directional light of E lux on a white Lambert sphere: L = E / pi * max(n.l, 0).
+TEST_F(ForwardRenderTest, DirectionalLightInLuxOnLambert) {
+    RenderJob job = small_job("builtin:sphere", "none");
+    job.preset = "lambert";
+    job.frame.samples = 1;
+    job.frame.views = {View::normal};
+    Light sun;
+    sun.type = LightType::directional;
+    sun.direction = glm::normalize(glm::vec3(-1.0f, -0.5f, -1.0f));
+    sun.intensity = 5.0f;
+    sun.color = glm::vec3(1.0f, 0.5f, 0.25f);
+    job.extra_lights = {sun};
+    const RenderedImages images = render(job);
+    ASSERT_EQ(images.views.size(), 1u);
+    const std::vector<float>& normals = images.views[0].second;
+    int checked = 0;
+    double worst = 0;
+    for (uint32_t y = 0; y < 64; ++y)
+        for (uint32_t x = 0; x < 64; ++x) {
+            Pixel p = at(images.hdr, 64, x, y), n = at(normals, 64, x, y);
+            if (p.a < 1.0f) continue;
+            const double ndotl = std::max(0.0, -(double(n.r) * sun.direction.x + double(n.g) * sun.direction.y +
+                                                 double(n.b) * sun.direction.z));
+            const double expected[] = {5.0 / pi * ndotl, 2.5 / pi * ndotl, 1.25 / pi * ndotl};
+            worst = std::max({worst, std::abs(p.r - expected[0]), std::abs(p.g - expected[1]),
+                              std::abs(p.b - expected[2])});
+            ++checked;
+        }
+    EXPECT_GT(checked, 1000);
+    EXPECT_LT(worst, 2e-3);
+}
+
+// Spot light: full strength inside the inner cone, nothing outside the outer cone.
+TEST_F(ForwardRenderTest, SpotConeLimitsTheLight) {
+    Scene scene;
+    scene.source = "spot test";
+    Material white;
+    white.base_color = glm::vec4(1.0f);
+    white.metallic = 0.0f;
+    white.specular_factor = 0.0f;
+    scene.materials = {white};
+    add_quad(scene, 0, 0.0f, false);
+    RenderJob job = small_job("", "none");
+    job.frame.samples = 1;
+    job.orbit = std::array<float, 3>{0.0f, 0.0f, 2.5f};
+    job.target = glm::vec3(0.0f);
+    Light spot;
+    spot.type = LightType::spot;
+    spot.position = glm::vec3(0.0f, 0.0f, 1.0f);
+    spot.direction = glm::vec3(0.0f, 0.0f, -1.0f);
+    spot.intensity = 10.0f;  // candela
+    spot.inner_cone = glm::radians(10.0f);
+    spot.outer_cone = glm::radians(20.0f);
+    job.extra_lights = {spot};
+    const RenderedImages images = render(job, scene);
+    ASSERT_FALSE(images.hdr.empty());
+    // Centre: straight below the light at 1 m: E = 10 lux, L = 10 / pi.
+    EXPECT_NEAR(at(images.hdr, 64, 32, 32).r, 10.0 / pi, 0.05);
+    // 0.6 m off axis is atan(0.6) = 31 degrees, outside the outer cone: dark.
+    EXPECT_EQ(at(images.hdr, 64, 32 + 14, 32).r, 0.0f);
+}
+
+// Alpha modes: a masked texel below the cutoff vanishes, a blended quad mixes with what
+// is behind it (drawn back to front whatever the declaration order), a back-facing
+// single-sided quad is culled, a double-sided one is drawn.
+TEST_F(ForwardRenderTest, AlphaModesBlendingOrderAndDoubleSided) {
+    auto run = [&](std::vector<Material> materials, std::vector<std::pair<float, bool>> quads) {
+        Scene scene;
+        scene.source = "alpha test";
+        scene.materials = std::move(materials);
+        for (uint32_t i = 0; i < quads.size(); ++i) add_quad(scene, i, quads[i].first, quads[i].second);
+        RenderJob job = small_job("", "none");
+        job.orbit = std::array<float, 3>{0.0f, 0.0f, 3.0f};
+        job.target = glm::vec3(0.0f);
+        const RenderedImages images = render(job, scene);
+        return images.hdr.empty() ? Pixel{-1, -1, -1, -1} : at(images.hdr, 64, 32, 32);
+    };
+    const Material green = emitter({0, 1, 0}, 1.0f, AlphaMode::opaque);
+    // Blended red in front (z = 0.5) of opaque green, declared first: still composited.
+    Pixel p = run({emitter({1, 0, 0}, 0.25f, AlphaMode::blend), green}, {{0.5f, false}, {0.0f, false}});
+    EXPECT_NEAR(p.r, 0.25f, 1e-4);
+    EXPECT_NEAR(p.g, 0.75f, 1e-4);
+    // Two blended quads, nearer one declared first: sorted back to front.
+    p = run({emitter({1, 0, 0}, 0.5f, AlphaMode::blend), emitter({0, 0, 1}, 0.5f, AlphaMode::blend), green},
+            {{0.5f, false}, {0.25f, false}, {0.0f, false}});
+    EXPECT_NEAR(p.r, 0.5f, 1e-4);    // red on top
+    EXPECT_NEAR(p.b, 0.25f, 1e-4);   // blue under it
+    EXPECT_NEAR(p.g, 0.25f, 1e-4);   // green at the back
+    // Masked below the cutoff: discarded, green shows.
+    p = run({emitter({1, 0, 0}, 0.3f, AlphaMode::mask), green}, {{0.5f, false}, {0.0f, false}});
+    EXPECT_NEAR(p.g, 1.0f, 1e-4);
+    EXPECT_EQ(p.r, 0.0f);
+    // Back-facing: culled when single-sided, drawn when double-sided.
+    Material red = emitter({1, 0, 0}, 1.0f, AlphaMode::opaque);
+    p = run({red, green}, {{0.5f, true}, {0.0f, false}});
+    EXPECT_NEAR(p.g, 1.0f, 1e-4);
+    red.double_sided = true;
+    p = run({red, green}, {{0.5f, true}, {0.0f, false}});
+    EXPECT_NEAR(p.r, 1.0f, 1e-4);
+}
+
+// The component views, each against its formula evaluated here from the normal and
+// position views: final = diffuse + specular; D, F, G for the one light.
+TEST_F(ForwardRenderTest, ComponentViewsMatchTheirFormulas) {
+    RenderJob job = small_job("builtin:sphere", "builtin:sky");
+    job.frame.samples = 1;
+    job.frame.views = {View::normal, View::position, View::D, View::F, View::G, View::diffuse, View::specular};
+    Light light;
+    light.type = LightType::directional;
+    light.direction = glm::normalize(glm::vec3(-0.3f, -1.0f, -0.6f));
+    light.intensity = 2.0f;
+    job.extra_lights = {light};
+    std::unique_ptr<RenderSession> session;
+    const RenderedImages images = render(job, &session);
+    ASSERT_EQ(images.views.size(), 7u);
+    auto view = [&](int i, uint32_t x, uint32_t y) { return at(images.views[size_t(i)].second, 64, x, y); };
+    const glm::vec3 eye = session->camera().position;
+    const double roughness = 0.5, f0 = 0.04;  // builtin:sphere: white dielectric, roughness 0.5
+    const double alpha = roughness * roughness, k = (roughness + 1) * (roughness + 1) / 8;
+    int checked = 0;
+    for (uint32_t y = 4; y < 60; y += 3)
+        for (uint32_t x = 4; x < 60; x += 3) {
+            const Pixel n = view(0, x, y), pos = view(1, x, y);
+            if (at(images.hdr, 64, x, y).a < 1.0f || n.a < 1.0f) continue;
+            const glm::dvec3 N(n.r, n.g, n.b), P(pos.r, pos.g, pos.b);
+            const glm::dvec3 V = glm::normalize(glm::dvec3(eye) - P), L = -glm::dvec3(light.direction);
+            const glm::dvec3 H = glm::normalize(V + L);
+            const double nh = std::max(0.0, glm::dot(N, H)), nv = std::max(0.0, glm::dot(N, V)),
+                         nl = std::max(0.0, glm::dot(N, L)), hv = std::max(0.0, glm::dot(H, V));
+            const double d = nh * nh * (alpha * alpha - 1) + 1;
+            const double D = alpha * alpha / (pi * d * d);
+            const double F = f0 + (1 - f0) * std::pow(1 - hv, 5);
+            const double G = nv / (nv * (1 - k) + k) * nl / (nl * (1 - k) + k);
+            EXPECT_NEAR(view(2, x, y).r, D, 2e-3 * std::max(1.0, D)) << x << "," << y;
+            EXPECT_NEAR(view(3, x, y).r, F, 1e-4) << x << "," << y;
+            EXPECT_NEAR(view(4, x, y).r, G, 1e-4) << x << "," << y;
+            const Pixel final_color = at(images.hdr, 64, x, y);
+            EXPECT_NEAR(final_color.g, view(5, x, y).g + view(6, x, y).g, 1e-4 * std::max(1.0f, final_color.g));
+            ++checked;
+        }
+    EXPECT_GT(checked, 100);
+}
+
+// Only what the frame needs: no bake without an environment, no skybox pass when it is
+// off, one pipeline variant for 49 spheres of one feature set.
+TEST_F(ForwardRenderTest, GraphHoldsOnlyWhatTheFrameNeeds) {
+    auto pass_names = [](const RenderedImages& images) {
+        std::vector<std::string> names;
+        for (const PassTiming& t : images.timings) names.push_back(t.name);
+        return names;
+    };
+    std::unique_ptr<RenderSession> session;
+    RenderJob job = small_job("builtin:spheres", "none");
+    RenderedImages images = render(job, &session);
+    EXPECT_TRUE(session->bake_timings().empty());
+    EXPECT_EQ(pass_names(images), (std::vector<std::string>{"forward", "tonemap"}));
+    EXPECT_EQ(session->pipeline_variants(), 1u);
+
+    job.env = "builtin:sky";
+    images = render(job, &session);
+    EXPECT_FALSE(session->bake_timings().empty());
+    EXPECT_EQ(pass_names(images), (std::vector<std::string>{"skybox", "forward", "tonemap"}));
+    job.frame.skybox = false;
+    images = render(job, &session);
+    EXPECT_EQ(pass_names(images), (std::vector<std::string>{"forward", "tonemap"}));
+
+    // Pure metals need no irradiance: the bake has no irradiance pass.
+    job.preset = "gold";
+    images = render(job, &session);
+    for (const PassTiming& t : session->bake_timings()) EXPECT_EQ(t.name.find("irradiance"), std::string::npos) << t.name;
+}
+
+}  // namespace
+}  // namespace facet
