@@ -277,6 +277,54 @@ TEST_F(ForwardRenderTest, ComponentViewsMatchTheirFormulas) {
     EXPECT_GT(checked, 100);
 }
 
+// A metal sphere under one directional light: the specular radiance is f_s E (n.l) with
+// Smith/Schlick-GGX (k = (r+1)^2/8, the thesis) by default, or glTF's height-correlated
+// visibility on request.
+TEST_F(ForwardRenderTest, SpecularWithBothSmithTerms) {
+    for (bool height_correlated : {false, true}) {
+        RenderJob job = small_job("builtin:sphere", "none");
+        job.preset = "silver";
+        job.frame.samples = 1;
+        job.frame.height_correlated = height_correlated;
+        job.frame.views = {View::normal, View::position};
+        Light light;
+        light.type = LightType::directional;
+        light.direction = glm::normalize(glm::vec3(-0.5f, -0.4f, -1.0f));
+        light.intensity = 3.0f;
+        job.extra_lights = {light};
+        std::unique_ptr<RenderSession> session;
+        const RenderedImages images = render(job, &session);
+        ASSERT_EQ(images.views.size(), 2u);
+        const glm::dvec3 eye = session->camera().position;
+        const double r = 0.5, alpha = r * r, k = (r + 1) * (r + 1) / 8, f0 = 0.93;  // green channel of silver
+        int checked = 0;
+        double worst = 0;
+        for (uint32_t y = 2; y < 62; y += 2)
+            for (uint32_t x = 2; x < 62; x += 2) {
+                const Pixel n = at(images.views[0].second, 64, x, y), pos = at(images.views[1].second, 64, x, y);
+                if (n.a < 1.0f) continue;
+                const glm::dvec3 N(n.r, n.g, n.b), V = glm::normalize(eye - glm::dvec3(pos.r, pos.g, pos.b));
+                const glm::dvec3 L = -glm::dvec3(light.direction), H = glm::normalize(V + L);
+                const double nl = glm::dot(N, L), nv = std::max(0.0, glm::dot(N, V)), nh = glm::dot(N, H);
+                if (nl <= 0.05 || nv <= 0.05) continue;
+                const double q = nh * nh * (alpha * alpha - 1) + 1, D = alpha * alpha / (pi * q * q);
+                const double F = f0 + (1 - f0) * std::pow(1 - glm::dot(H, V), 5);
+                double visibility;  // G / (4 n.l n.v)
+                if (height_correlated) {
+                    const double a2 = alpha * alpha;
+                    visibility = 0.5 / (nl * std::sqrt(nv * nv * (1 - a2) + a2) + nv * std::sqrt(nl * nl * (1 - a2) + a2));
+                } else {
+                    visibility = nv / (nv * (1 - k) + k) * nl / (nl * (1 - k) + k) / (4 * nl * nv);
+                }
+                const double want = D * F * visibility * 3.0 * nl;
+                worst = std::max(worst, std::abs(at(images.hdr, 64, x, y).g - want) / std::max(want, 1e-3));
+                ++checked;
+            }
+        EXPECT_GT(checked, 200);
+        EXPECT_LT(worst, 2e-3) << (height_correlated ? "height-correlated" : "Schlick-GGX");
+    }
+}
+
 // Only what the frame needs: no bake without an environment, no skybox pass when it is
 // off, one pipeline variant for 49 spheres of one feature set.
 TEST_F(ForwardRenderTest, GraphHoldsOnlyWhatTheFrameNeeds) {
