@@ -195,7 +195,7 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
     return std::unique_ptr<RenderSession>(new RenderSession(std::move(s)));
 }
 
-Result<RenderedImages> RenderSession::render_frame() {
+Result<RenderedImages> RenderSession::render_frame(bool pass_by_pass) {
     State& s = *state_;
     Context& context = *s.context;
     const auto start = std::chrono::steady_clock::now();
@@ -227,7 +227,8 @@ Result<RenderedImages> RenderSession::render_frame() {
     for (auto& [view, handle] : images->views) graph.export_image(handle, readable);
     CompiledGraph compiled = graph.compile();
     GraphRun run(context, compiled);
-    run.submit_and_wait();
+    if (pass_by_pass) run.submit_and_wait([](uint32_t, uint32_t, const std::string&) {});
+    else run.submit_and_wait();
 
     RenderedImages out;
     out.width = s.frame.width;

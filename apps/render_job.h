@@ -56,8 +56,10 @@ public:
                                                          const ProgressFn& progress = {});
     ~RenderSession();
 
-    // Draws one frame with the job's settings and reads every image back.
-    Result<RenderedImages> render_frame();
+    // Draws one frame with the job's settings and reads every image back. With
+    // `pass_by_pass`, each pass is its own submission (waited for), so that GPU time is
+    // attributed to the right pass on drivers that defer rasterisation (lavapipe).
+    Result<RenderedImages> render_frame(bool pass_by_pass = false);
 
     const Scene& scene() const;
     const CameraView& camera() const;

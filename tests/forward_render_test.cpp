@@ -343,7 +343,7 @@ TEST_F(ForwardRenderTest, GraphHoldsOnlyWhatTheFrameNeeds) {
     job.env = "builtin:sky";
     images = render(job, &session);
     EXPECT_FALSE(session->bake_timings().empty());
-    EXPECT_EQ(pass_names(images), (std::vector<std::string>{"skybox", "forward", "tonemap"}));
+    EXPECT_EQ(pass_names(images), (std::vector<std::string>{"forward", "skybox", "tonemap"}));
     job.frame.skybox = false;
     images = render(job, &session);
     EXPECT_EQ(pass_names(images), (std::vector<std::string>{"forward", "tonemap"}));

@@ -136,15 +136,6 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     return pipeline;
 }
 
-Result<const Pipeline*> ForwardRenderer::skybox_pipeline(VkSampleCountFlagBits samples) {
-    Pipeline::GraphicsDesc desc;
-    desc.bindings = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
-    desc.push_constant_bytes = sizeof(SkyConstants);
-    desc.color_formats = {hdr_format};
-    desc.samples = samples;
-    return programs_.graphics("render/skybox.vert", "render/skybox.frag", desc);
-}
-
 ForwardRenderer::DrawList ForwardRenderer::draw_list(const GpuScene& gpu, const CameraView& camera) const {
     const Scene& scene = gpu.scene();
     DrawList list;
@@ -213,7 +204,8 @@ Result<FrameImages> ForwardRenderer::add_passes(RenderGraph& graph, const GpuSce
     const bool draw_sky = s.skybox && ibl.has_value();
     const Pipeline* sky = nullptr;
     if (draw_sky) {
-        auto p = skybox_pipeline(samples);
+        const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
+        auto p = programs_.compute("render/skybox.comp", bindings, sizeof(SkyConstants));
         if (!p) return p.error();
         sky = *p;
     }
@@ -230,35 +222,6 @@ Result<FrameImages> ForwardRenderer::add_passes(RenderGraph& graph, const GpuSce
     ImageDesc depth_desc = msaa_desc;
     depth_desc.format = depth_format;
     ImageHandle depth = graph.create_image("depth", depth_desc);
-
-    if (draw_sky) {
-        glm::mat4 rotation = view;
-        rotation[3] = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
-        const SkyConstants constants{glm::inverse(projection * rotation), 0.0f, ibl->intensity};
-        graph.add_graphics_pass("skybox", [&](PassBuilder& b) {
-            b.sample(ibl->cube);
-            color = b.color_attachment(color);
-        }, [sky, constants, color, cube = ibl->cube, sampler = ibl->cube_sampler, s](PassContext& pc) {
-            VkRenderingAttachmentInfo attachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-            attachment.imageView = pc.view(color);
-            attachment.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-            attachment.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;  // every pixel is drawn
-            attachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-            VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-            info.renderArea = {{0, 0}, {s.width, s.height}};
-            info.layerCount = 1;
-            info.colorAttachmentCount = 1;
-            info.pColorAttachments = &attachment;
-            vkCmdBeginRendering(pc.cmd(), &info);
-            set_viewport(pc.cmd(), s.width, s.height);
-            sky->bind(pc.cmd());
-            const DescriptorWrite writes[] = {DescriptorWrite::sampled_image(pc.view(cube), sampler)};
-            sky->push_descriptors(pc.cmd(), writes);
-            sky->push_constants(pc.cmd(), constants);
-            vkCmdDraw(pc.cmd(), 3, 1, 0, 0);
-            vkCmdEndRendering(pc.cmd());
-        });
-    }
 
     // Descriptors shared by every draw of a pass; bindings 4..6 are IBL or black defaults.
     struct Shared {
@@ -355,11 +318,27 @@ Result<FrameImages> ForwardRenderer::add_passes(RenderGraph& graph, const GpuSce
         depth = b.depth_attachment(depth);
         out.hdr = resolve ? b.color_attachment(out.hdr) : color;
     }, [=, hdr = out.hdr](PassContext& pc) {
-        begin(pc, pc.view(color), resolve ? pc.view(hdr) : VK_NULL_HANDLE, pc.view(depth), draw_sky, s.width,
-              s.height);
+        begin(pc, pc.view(color), resolve ? pc.view(hdr) : VK_NULL_HANDLE, pc.view(depth), false, s.width, s.height);
         record_draws(pc, order, final_pipelines);
         vkCmdEndRendering(pc.cmd());
     });
+
+    if (draw_sky) {
+        glm::mat4 rotation = view;
+        rotation[3] = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+        const SkyConstants constants{glm::inverse(projection * rotation), 0.0f, ibl->intensity};
+        graph.add_compute_pass("skybox", [&](PassBuilder& b) {
+            b.sample(ibl->cube);
+            out.hdr = b.read_write_storage(out.hdr);
+        }, [sky, constants, hdr = out.hdr, cube = ibl->cube, sampler = ibl->cube_sampler, s](PassContext& pc) {
+            sky->bind(pc.cmd());
+            const DescriptorWrite writes[] = {DescriptorWrite::sampled_image(pc.view(cube), sampler),
+                                              DescriptorWrite::storage_image(pc.view(hdr))};
+            sky->push_descriptors(pc.cmd(), writes);
+            sky->push_constants(pc.cmd(), constants);
+            vkCmdDispatch(pc.cmd(), group_count(s.width, 8), group_count(s.height, 8), 1);
+        });
+    }
 
     ImageDesc ldr_desc = hdr_desc;
     ldr_desc.format = VK_FORMAT_R8G8B8A8_UNORM;

@@ -1,7 +1,8 @@
 #pragma once
-// The forward PBR frame as render-graph passes: skybox (when on and an environment is
-// given), the forward pass (opaque and masked primitives, then blended ones sorted back
-// to front, into an MSAA HDR target resolved at the end), the display transform, and
+// The forward PBR frame as render-graph passes: the forward pass (opaque and masked
+// primitives, then blended ones sorted back to front, into an MSAA HDR target resolved
+// at the end), the skybox composited under it (when on and an environment is given),
+// the display transform, and
 // one single-sample pass per requested view (AOV). Only what the frame needs is added:
 // no skybox when it is off, no IBL inputs without an environment.
 #include <optional>
@@ -72,7 +73,6 @@ private:
     };
     Result<const Pipeline*> material_pipeline(const GpuScene& scene, uint32_t material, View view,
                                               VkSampleCountFlagBits samples, bool ibl, bool height_correlated);
-    Result<const Pipeline*> skybox_pipeline(VkSampleCountFlagBits samples);
     DrawList draw_list(const GpuScene& scene, const CameraView& camera) const;
 
     Context& context_;

@@ -1,0 +1,106 @@
+#include "bench_render.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+
+#include "gpu/context.h"
+#include "io/atomic_file.h"
+#include "render_job.h"
+
+namespace facet {
+namespace {
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0;
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+}  // namespace
+
+void add_render_bench_options(cli::Parser& parser) {
+    parser.option("--model", "PATH|builtin:NAME", "render: the model (default builtin:spheres)")
+        .option("--env", "PATH|builtin:NAME|none", "render: the environment (default builtin:sky)")
+        .option("--width", "W", "render: image width (default 1280)")
+        .option("--height", "H", "render: image height (default 720)")
+        .option("--frames", "N", "render: frames measured after one warm-up (default 10)")
+        .repeatable("--light", "SPEC", "render: a light, as facet-render's --light (repeatable)");
+}
+
+int run_render_bench(const cli::Parsed& a) {
+    RenderJob job;
+    int frames = 10;
+    try {
+        job.model = a.get("--model", job.model);
+        job.env = a.get("--env", job.env);
+        if (a.has("--width")) job.frame.width = uint32_t(cli::parse_int(a.get("--width"), "--width", 1, 16384));
+        if (a.has("--height")) job.frame.height = uint32_t(cli::parse_int(a.get("--height"), "--height", 1, 16384));
+        if (a.has("--frames")) frames = cli::parse_int(a.get("--frames"), "--frames", 1, 10000);
+        for (const std::string& spec : a.all("--light")) {
+            auto light = parse_light(spec);
+            if (!light) throw std::invalid_argument(light.error().message);
+            job.extra_lights.push_back(*light);
+        }
+    } catch (const std::invalid_argument& e) {
+        std::fprintf(stderr, "facet-bench: error: %s\n", e.what());
+        return 2;
+    }
+    auto created = Context::create({});
+    if (!created) {
+        std::fprintf(stderr, "facet-bench: error: cannot start Vulkan: %s\n", created.error().message.c_str());
+        return 1;
+    }
+    Context& context = *created.value();
+    auto session = RenderSession::create(context, job, [](const std::string& line) {
+        std::fprintf(stderr, "facet-bench: %s\n", line.c_str());
+    });
+    if (!session) {
+        std::fprintf(stderr, "facet-bench: error: %s\n", session.error().message.c_str());
+        return 1;
+    }
+    std::map<std::string, std::vector<double>> per_pass;
+    std::vector<std::string> order;
+    std::vector<double> gpu, wall;
+    for (int f = -1; f < frames; ++f) {
+        auto images = (*session)->render_frame(true);
+        if (!images) {
+            std::fprintf(stderr, "facet-bench: error: %s\n", images.error().message.c_str());
+            return 1;
+        }
+        if (f < 0) continue;  // warm-up: first use of every pipeline and allocation
+        double sum = 0;
+        for (const PassTiming& t : images->timings) {
+            if (!per_pass.count(t.name)) order.push_back(t.name);
+            per_pass[t.name].push_back(t.time_ms);
+            sum += t.time_ms;
+        }
+        gpu.push_back(sum);
+        wall.push_back(images->wall_ms);
+        std::fprintf(stderr, "facet-bench: frame %d/%d: %.1f ms GPU\n", f + 1, frames, sum);
+    }
+    std::printf("\n%s under %s, %ux%u, %zu light(s), %d frames on %s, medians\n", job.model.c_str(), job.env.c_str(),
+                job.frame.width, job.frame.height, (*session)->frame().lights.size(), frames,
+                context.device_name().c_str());
+    std::string csv = "pass,median_gpu_ms,frames\n";
+    for (const std::string& name : order) {
+        std::printf("  %-24s %9.2f ms GPU\n", name.c_str(), median(per_pass[name]));
+        csv += "\"" + name + "\"," + std::to_string(median(per_pass[name])) + "," + std::to_string(frames) + "\n";
+    }
+    std::printf("  %-24s %9.2f ms GPU\n  %-24s %9.2f ms wall (graph, transients, readback)\n", "frame", median(gpu),
+                "frame", median(wall));
+    double bake = 0;
+    for (const PassTiming& t : (*session)->bake_timings()) bake += t.time_ms;
+    std::printf("  %-24s %9.2f ms GPU (once)\n", "IBL bake", bake);
+    csv += "\"frame (GPU)\"," + std::to_string(median(gpu)) + "," + std::to_string(frames) + "\n";
+    csv += "\"frame (wall)\"," + std::to_string(median(wall)) + "," + std::to_string(frames) + "\n";
+    if (a.has("--csv"))
+        if (Status s = write_text_file(a.get("--csv"), csv); !s) {
+            std::fprintf(stderr, "facet-bench: error: %s\n", s.error().message.c_str());
+            return 1;
+        }
+    return 0;
+}
+
+}  // namespace facet

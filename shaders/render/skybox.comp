@@ -1,0 +1,29 @@
+#version 460
+// The environment seen directly (the thesis' skybox), composited under the resolved
+// frame: the forward pass clears to transparent black and its alpha is the coverage
+// (opaque geometry) or the "over" alpha (blended geometry), so colour + (1 - alpha) sky
+// is the frame over the sky, antialiased edges included. One cube sample per pixel in a
+// compute pass costs a small fraction of drawing the sky into every MSAA sample.
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0) uniform samplerCube environment;
+layout(binding = 1, rgba32f) uniform image2D frame;
+
+layout(push_constant) uniform Sky {
+    mat4 inverse_view_projection;  // of the view without translation
+    float lod;
+    float intensity;
+} sky;
+
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = imageSize(frame);
+    if (any(greaterThanEqual(p, size))) return;
+    vec2 ndc = (vec2(p) + 0.5) / vec2(size) * 2.0 - 1.0;
+    // Reversed Z: depth 0 is infinitely far; a depth just above it is a far point.
+    vec4 far = sky.inverse_view_projection * vec4(ndc, 1e-6, 1.0);
+    vec3 direction = normalize(far.xyz / far.w);
+    vec4 color = imageLoad(frame, p);
+    vec3 background = textureLod(environment, direction, sky.lod).rgb * sky.intensity;
+    float coverage = clamp(color.a, 0.0, 1.0);
+    imageStore(frame, p, vec4(color.rgb + (1.0 - coverage) * background, 1.0));
+}
