@@ -35,6 +35,18 @@ TEST(FacetBench, ReportsMediansOfPassesAndWholeBake) {
     std::filesystem::remove(csv);
 }
 
+TEST(FacetBench, RenderReportsMedianFrameAndPasses) {
+    auto [status, out] = run("render --model builtin:sphere --env builtin:white --width 64 --height 48 --frames 3 "
+                             "--light 'directional dir=0,-1,-1'");
+    ASSERT_EQ(status, 0) << out;
+    for (const char* text : {"3 frames", "forward", "skybox", "tonemap", "ms GPU", "ms wall", "IBL bake", "1 light(s)"})
+        EXPECT_NE(out.find(text), std::string::npos) << text << "\n" << out;
+    EXPECT_EQ(out.find("Validation"), std::string::npos) << out;
+    auto [bad, bad_out] = run("render --model builtin:nothing");
+    EXPECT_EQ(bad, 1);
+    EXPECT_NE(bad_out.find("builtin:nothing"), std::string::npos) << bad_out;
+}
+
 TEST(FacetBench, BadUseIsAClearError) {
     auto [status, out] = run("frobnicate");
     EXPECT_EQ(status, 2);

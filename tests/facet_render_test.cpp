@@ -135,6 +135,7 @@ TEST(FacetRender, BadFilesNameTheFileAndWriteNothing) {
         {"--model builtin:teapot", "unknown built-in scene"},
         {"--model builtin:sphere --env " + dir / "not_an_image.hdr", "not_an_image.hdr"},
         {"--model builtin:sphere --env builtin:moon", "unknown built-in environment"},
+        {"--model builtin:sphere --camera gltf", "has no camera"},
     };
     for (const auto& [args, name] : cases) {
         const std::string out = dir / "out.png";
