@@ -208,6 +208,7 @@ void check_golden(const std::string& name, const std::string& args) {
     const std::string out = dir / (name + ".png");
     Ran r = run(args + " --width 160 --height 120 --out " + out);
     ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_EQ(r.output.find("Validation"), std::string::npos) << r.output;  // ctest sets FACET_VALIDATION=1
     const std::string golden = std::string(FACET_SOURCE_DIR) + "/tests/golden/" + name + ".png";
     if (std::getenv("FACET_UPDATE_GOLDEN")) {
         fs::copy_file(out, golden, fs::copy_options::overwrite_existing);

@@ -1,0 +1,176 @@
+#include "scene/gltf_materials.h"
+
+#include <climits>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <string>
+
+#include "scene/gltf_accessors.h"
+#include "scene/gltf_errors.h"
+
+namespace facet::gltf_detail {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+TextureRef texture_ref(const tinygltf::Model& model, int texture, int tex_coord, const std::string& where,
+                       const char* slot) {
+    TextureRef ref;
+    if (texture == -1) return ref;
+    std::string name = where + ": " + slot;
+    if (!in_range(texture, model.textures.size()))
+        fail(name + " texture " + std::to_string(texture) + " out of range (" + std::to_string(model.textures.size()) +
+             " textures)");
+    if (tex_coord != 0)
+        fail(name + " uses TEXCOORD_" + std::to_string(tex_coord) + "; only TEXCOORD_0 is supported");
+    const tinygltf::Texture& t = model.textures[size_t(texture)];
+    if (!in_range(t.source, model.images.size()))
+        fail(name + ": texture " + std::to_string(texture) + " image " + std::to_string(t.source) + " out of range");
+    if (t.sampler != -1 && !in_range(t.sampler, model.samplers.size()))
+        fail(name + ": texture " + std::to_string(texture) + " sampler " + std::to_string(t.sampler) + " out of range");
+    ref.image = t.source;
+    ref.sampler = t.sampler;
+    return ref;
+}
+
+uint32_t wrap_mode(int gl_wrap, const std::string& where) {
+    switch (gl_wrap) {
+    case TINYGLTF_TEXTURE_WRAP_REPEAT: return 0;
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return 1;
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return 2;
+    default: fail(where + ": unknown wrap mode " + std::to_string(gl_wrap));
+    }
+}
+
+std::string image_name(const tinygltf::Image& image, size_t index) {
+    if (!image.uri.empty() && image.uri.rfind("data:", 0) != 0) return fs::path(image.uri).filename().string();
+    if (!image.name.empty()) return image.name;
+    return "image " + std::to_string(index);
+}
+
+}  // namespace
+
+Material convert_material(const tinygltf::Model& model, size_t index) {
+    const tinygltf::Material& m = model.materials[index];
+    std::string where = label("material", index, m.name);
+    const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
+    Material out;
+    out.name = m.name;
+    if (pbr.baseColorFactor.size() != 4) fail(where + ": baseColorFactor must have 4 numbers");
+    out.base_color = glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2],
+                               pbr.baseColorFactor[3]);
+    out.metallic = float(pbr.metallicFactor);
+    out.roughness = float(pbr.roughnessFactor);
+    if (m.emissiveFactor.size() == 3) {
+        out.emissive = glm::vec3(m.emissiveFactor[0], m.emissiveFactor[1], m.emissiveFactor[2]);
+    } else if (!m.emissiveFactor.empty()) {
+        fail(where + ": emissiveFactor must have 3 numbers");
+    }
+    auto strength = m.extensions.find("KHR_materials_emissive_strength");
+    if (strength != m.extensions.end() && strength->second.IsObject()) {
+        const tinygltf::Value& value = strength->second.Get("emissiveStrength");
+        if (value.IsNumber()) out.emissive *= float(value.GetNumberAsDouble());
+    }
+    out.normal_scale = float(m.normalTexture.scale);
+    out.occlusion_strength = float(m.occlusionTexture.strength);
+    if (m.alphaMode == "OPAQUE") {
+        out.alpha_mode = AlphaMode::opaque;
+    } else if (m.alphaMode == "MASK") {
+        out.alpha_mode = AlphaMode::mask;
+    } else if (m.alphaMode == "BLEND") {
+        out.alpha_mode = AlphaMode::blend;
+    } else {
+        fail(where + ": unknown alphaMode '" + m.alphaMode + "'");
+    }
+    out.alpha_cutoff = float(m.alphaCutoff);
+    out.double_sided = m.doubleSided;
+    out.base_color_texture =
+        texture_ref(model, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, where, "baseColorTexture");
+    out.metallic_roughness_texture = texture_ref(model, pbr.metallicRoughnessTexture.index,
+                                                 pbr.metallicRoughnessTexture.texCoord, where, "metallicRoughnessTexture");
+    out.normal_texture = texture_ref(model, m.normalTexture.index, m.normalTexture.texCoord, where, "normalTexture");
+    out.occlusion_texture =
+        texture_ref(model, m.occlusionTexture.index, m.occlusionTexture.texCoord, where, "occlusionTexture");
+    out.emissive_texture =
+        texture_ref(model, m.emissiveTexture.index, m.emissiveTexture.texCoord, where, "emissiveTexture");
+    return out;
+}
+
+TextureSampler convert_sampler(const tinygltf::Sampler& s, size_t index) {
+    std::string where = label("sampler", index, s.name);
+    TextureSampler out;
+    if (s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST) {
+        out.mag_linear = false;
+    } else if (s.magFilter != -1 && s.magFilter != TINYGLTF_TEXTURE_FILTER_LINEAR) {
+        fail(where + ": unknown magFilter " + std::to_string(s.magFilter));
+    }
+    switch (s.minFilter) {
+    case -1: break;  // unspecified: the renderer's choice, trilinear
+    case TINYGLTF_TEXTURE_FILTER_NEAREST: out.min_linear = false; out.use_mips = false; break;
+    case TINYGLTF_TEXTURE_FILTER_LINEAR: out.use_mips = false; break;
+    case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST: out.min_linear = false; out.mip_linear = false; break;
+    case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST: out.mip_linear = false; break;
+    case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR: out.min_linear = false; break;
+    case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR: break;
+    default: fail(where + ": unknown minFilter " + std::to_string(s.minFilter));
+    }
+    out.wrap_u = wrap_mode(s.wrapS, where);
+    out.wrap_v = wrap_mode(s.wrapT, where);
+    return out;
+}
+
+TextureImage decode_image(const tinygltf::Model& model, size_t index, const EncodedImages& encoded) {
+    const tinygltf::Image& image = model.images[index];
+    TextureImage out;
+    out.name = image_name(image, index);
+    std::string where = "image '" + out.name + "'";
+    const uint8_t* bytes = nullptr;
+    size_t size = 0;
+    if (image.bufferView >= 0) {
+        if (!in_range(image.bufferView, model.bufferViews.size()))
+            fail(where + ": bufferView " + std::to_string(image.bufferView) + " out of range");
+        const tinygltf::BufferView& view = model.bufferViews[size_t(image.bufferView)];  // validated
+        bytes = model.buffers[size_t(view.buffer)].data.data() + view.byteOffset;
+        size = view.byteLength;
+    } else if (auto it = encoded.find(int(index)); it != encoded.end()) {
+        bytes = it->second.data();
+        size = it->second.size();
+    } else {
+        fail(where + ": cannot read '" + image.uri + "'");
+    }
+    if (size == 0 || size > size_t(INT_MAX)) fail(where + " could not be decoded: it is empty or too large");
+
+    // tinygltf's stb_image decoder; with no options it expands every image to 4 channels.
+    tinygltf::Image decoded;
+    std::string err, warn;
+    if (!tinygltf::LoadImageData(&decoded, int(index), &err, &warn, 0, 0, bytes, int(size), nullptr))
+        fail(where + " could not be decoded (PNG or JPEG expected)");
+    size_t channels = size_t(decoded.component);
+    size_t bytes_per_channel = decoded.bits == 16 ? 2 : 1;
+    size_t pixels = size_t(decoded.width) * size_t(decoded.height);
+    if (decoded.width <= 0 || decoded.height <= 0 || channels < 1 || channels > 4 ||
+        (decoded.bits != 8 && decoded.bits != 16) || decoded.image.size() != pixels * channels * bytes_per_channel)
+        fail(where + " could not be decoded: unexpected decoder output");
+    out.width = uint32_t(decoded.width);
+    out.height = uint32_t(decoded.height);
+    out.rgba.resize(pixels * 4);
+    for (size_t p = 0; p < pixels; ++p) {
+        uint8_t texel[4] = {0, 0, 0, 255};
+        for (size_t c = 0; c < channels; ++c) {
+            size_t at = (p * channels + c) * bytes_per_channel;
+            texel[c] = bytes_per_channel == 2 ? uint8_t((load<uint16_t>(&decoded.image[at]) * 255u + 32767u) / 65535u)
+                                              : decoded.image[at];
+        }
+        // Grey (and grey + alpha) images replicate their value into RGB.
+        if (channels <= 2) {
+            if (channels == 2) texel[3] = texel[1];
+            texel[1] = texel[2] = texel[0];
+        }
+        std::memcpy(&out.rgba[p * 4], texel, 4);
+    }
+    return out;
+}
+
+}  // namespace facet::gltf_detail

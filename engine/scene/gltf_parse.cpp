@@ -1,0 +1,100 @@
+#include "scene/gltf_parse.h"
+
+#include <algorithm>
+#include <cctype>
+#include <climits>
+#include <cstring>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+
+#include "scene/gltf_errors.h"
+
+namespace facet::gltf_detail {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr uint64_t kMaxFileBytes = uint64_t(INT_MAX);  // tinygltf takes 32-bit sizes
+
+std::string trim(std::string text) {
+    while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+    return text;
+}
+
+bool is_glb(const std::string& path, const std::vector<uint8_t>& bytes) {
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    return ext == ".glb" || (bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0);
+}
+
+uint32_t read_u32(const uint8_t* p) {
+    uint32_t value;
+    std::memcpy(&value, p, 4);  // GLB is little-endian, as are the hosts we build for
+    return value;
+}
+
+// tinygltf checks the chunks too, but says "Invalid glTF binary." for everything.
+void check_glb_header(const std::vector<uint8_t>& bytes) {
+    if (bytes.size() < 20) fail("truncated .glb: " + std::to_string(bytes.size()) + " bytes, less than its header");
+    if (read_u32(&bytes[4]) != 2) fail(".glb version " + std::to_string(read_u32(&bytes[4])) + " is not 2");
+    uint32_t length = read_u32(&bytes[8]);
+    if (length > bytes.size())
+        fail("truncated .glb: its header says " + std::to_string(length) + " bytes, the file has " +
+             std::to_string(bytes.size()));
+    if (20 + uint64_t(read_u32(&bytes[12])) > length) fail("truncated .glb: the JSON chunk runs past the end");
+}
+
+// tinygltf decodes images while it parses, before anything is validated, and for an
+// image in a bufferView it would read the view without checking it against its
+// buffer. So this callback only keeps the encoded bytes of uri images (a vector
+// tinygltf owns, so safe to read); decoding happens after validation.
+bool keep_encoded_image(tinygltf::Image* image, int index, std::string*, std::string*, int, int,
+                        const unsigned char* bytes, int size, void* user) {
+    if (image->bufferView >= 0 || size < 0) return true;
+    (*static_cast<EncodedImages*>(user))[index].assign(bytes, bytes + size);
+    return true;
+}
+
+}  // namespace
+
+std::vector<uint8_t> read_file(const std::string& path) {
+    std::error_code ec;
+    if (!fs::exists(path, ec)) fail("file not found");
+    if (!fs::is_regular_file(path, ec)) fail("not a regular file");
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    if (!in) fail("cannot open file");
+    std::streamoff size = in.tellg();
+    if (size < 0) fail("cannot read file");
+    if (uint64_t(size) > kMaxFileBytes) fail("file is larger than 2 GiB");
+    std::vector<uint8_t> bytes(static_cast<size_t>(size));
+    in.seekg(0);
+    if (!in.read(reinterpret_cast<char*>(bytes.data()), size)) fail("cannot read file");
+    return bytes;
+}
+
+tinygltf::Model parse(const std::string& path, const std::vector<uint8_t>& bytes, EncodedImages& encoded) {
+    tinygltf::Model model;
+    tinygltf::TinyGLTF loader;
+    loader.SetImageLoader(keep_encoded_image, &encoded);
+    std::string err, warn;
+    std::string base_dir = fs::path(path).parent_path().string();
+    bool ok = false;
+    try {
+        if (is_glb(path, bytes)) {
+            check_glb_header(bytes);
+            ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), base_dir);
+        } else {
+            ok = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                            unsigned(bytes.size()), base_dir);
+        }
+    } catch (const std::exception& e) {  // the JSON library may throw past tinygltf
+        ok = false;
+        err = e.what();
+    }
+    if (!ok) fail("glTF parse failed: " + trim(err.empty() ? warn : err));
+    return model;
+}
+
+}  // namespace facet::gltf_detail
