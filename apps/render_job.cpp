@@ -227,8 +227,17 @@ Result<RenderedImages> RenderSession::render_frame(bool pass_by_pass) {
     for (auto& [view, handle] : images->views) graph.export_image(handle, readable);
     CompiledGraph compiled = graph.compile();
     GraphRun run(context, compiled);
-    if (pass_by_pass) run.submit_and_wait([](uint32_t, uint32_t, const std::string&) {});
-    else run.submit_and_wait();
+    std::vector<PassTiming> pass_wall;
+    if (pass_by_pass) {
+        auto last = std::chrono::steady_clock::now();
+        run.submit_and_wait([&](uint32_t, uint32_t, const std::string& pass) {
+            const auto now = std::chrono::steady_clock::now();
+            pass_wall.push_back({pass, std::chrono::duration<double, std::milli>(now - last).count()});
+            last = now;
+        });
+    } else {
+        run.submit_and_wait();
+    }
 
     RenderedImages out;
     out.width = s.frame.width;
@@ -245,6 +254,7 @@ Result<RenderedImages> RenderSession::render_frame(bool pass_by_pass) {
     std::memcpy(out.ldr.data(), ldr.data(), ldr.size());
     for (auto& [view, handle] : images->views) out.views.push_back({view, read_floats(handle)});
     out.timings = run.timings();
+    out.pass_wall = std::move(pass_wall);
     out.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return out;
 }

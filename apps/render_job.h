@@ -41,6 +41,7 @@ struct RenderedImages {
     std::vector<uint8_t> ldr;  // RGBA8, display-encoded
     std::vector<std::pair<View, std::vector<float>>> views;
     std::vector<PassTiming> timings;
+    std::vector<PassTiming> pass_wall;  // pass by pass only: submit-to-done wall time per pass
     double wall_ms = 0;
 };
 
