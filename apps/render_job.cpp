@@ -11,6 +11,7 @@
 #include "render/gpu_scene.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
+#include "scene/scene_needs.h"
 #include "shader/program_cache.h"
 
 namespace facet {
@@ -172,9 +173,9 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
                 " NaN, Inf or negative texels with 0");
         // Model no more than the scene needs: pure metals need no irradiance.
         IblSettings requested = job.ibl;
-        requested.want_irradiance = false;
-        for (const Material& m : s->scene.materials)
-            if (m.metallic < 1.0f || m.metallic_roughness_texture.valid()) requested.want_irradiance = true;
+        const SceneNeeds needs = scene_needs(s->scene);
+        requested.want_irradiance = needs.diffuse;
+        requested.specular.min_roughness = needs.min_roughness;
         s->ibl_settings = resolved_ibl_settings(requested, *s->env);
         s->ibl_bake = std::make_unique<IblBake>(context, *s->programs);
         RenderGraph graph;

@@ -354,5 +354,50 @@ TEST_F(ForwardRenderTest, GraphHoldsOnlyWhatTheFrameNeeds) {
     for (const PassTiming& t : session->bake_timings()) EXPECT_EQ(t.name.find("irradiance"), std::string::npos) << t.name;
 }
 
+// No specular level below the smallest roughness in use is computed, and the image is
+// the same as with every level baked.
+TEST_F(ForwardRenderTest, SpecularLevelsBelowTheSceneRoughnessAreNotBaked) {
+    auto spheres = [](float min_roughness) {
+        Scene scene = builtin_scene("builtin:spheres", find_material_preset("copper")).value();
+        for (Material& m : scene.materials) m.roughness = min_roughness + (1 - min_roughness) * m.roughness;
+        return scene;
+    };
+    RenderJob job = small_job("", "builtin:sky");
+    job.env_width = 128;  // cube 32^2, 6 levels: roughness 0, 0.2, ... 1
+    job.frame.width = 96;
+    job.frame.height = 32;
+    std::vector<std::string> baked;
+    auto session = RenderSession::create(ctx(), job, spheres(0.5f));
+    ASSERT_TRUE(session) << session.error().message;
+    for (const PassTiming& t : (*session)->bake_timings())
+        if (t.name.rfind("specular level", 0) == 0 && t.name.find("texels") == std::string::npos)
+            baked.push_back(t.name.substr(0, 16));
+    // Roughness >= 0.5 reads levels 2 (0.4) and up.
+    EXPECT_EQ(baked, (std::vector<std::string>{"specular level 2", "specular level 3", "specular level 4",
+                                               "specular level 5"}));
+    auto culled = (*session)->render_frame();
+    ASSERT_TRUE(culled);
+    // The same scene with one sphere at roughness 0 bakes everything; the others match.
+    Scene full = spheres(0.5f);
+    full.materials.push_back(full.materials.back());
+    full.materials.back().roughness = 0.0f;
+    const uint32_t p = add_sphere_primitive(full, uint32_t(full.materials.size() - 1));
+    Instance far_away;
+    far_away.primitive = p;
+    far_away.world[3] = glm::vec4(0.0f, 0.0f, -1000.0f, 1.0f);
+    full.instances.push_back(far_away);
+    job.target = glm::vec3(0.0f);
+    job.orbit = std::array<float, 3>{0.0f, 0.0f, glm::length((*session)->camera().position)};
+    auto full_session = RenderSession::create(ctx(), job, full);
+    ASSERT_TRUE(full_session);
+    EXPECT_GT((*full_session)->bake_timings().size(), (*session)->bake_timings().size());
+    auto all_levels = (*full_session)->render_frame();
+    ASSERT_TRUE(all_levels);
+    double worst = 0;
+    for (size_t i = 0; i < culled->hdr.size(); ++i)
+        worst = std::max(worst, double(std::abs(culled->hdr[i] - all_levels->hdr[i])));
+    EXPECT_LT(worst, 1e-5);
+}
+
 }  // namespace
 }  // namespace facet

@@ -1,5 +1,6 @@
 #include "ibl/specular.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "gpu/resources.h"
@@ -54,6 +55,12 @@ uint32_t convolve_source_size(float roughness) {
     return size;
 }
 
+uint32_t first_needed_specular_level(const SpecularSettings& settings) {
+    if (settings.levels <= 1 || settings.min_roughness <= 0.0f) return 0;
+    const float lod = std::min(settings.min_roughness, 1.0f) * float(settings.levels - 1);
+    return std::min(uint32_t(std::floor(lod + 1e-5f)), settings.levels - 1);
+}
+
 Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& programs, const Sampler& cube_sampler,
                                         ImageHandle environment, ImageHandle specular, const SpecularSettings& s,
                                         ImageHandle equirect) {
@@ -71,21 +78,24 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
     auto copy = programs.compute("ibl/cube_copy_level.comp", storage2, 0);
     if (!copy) return copy.error();
 
-    ImageHandle current;
-    graph.add_compute_pass("specular level 0 (copy)", [&](PassBuilder& b) {
-        b.read_storage(environment, ImageRange::mip(0));
-        current = b.write_storage(specular, ImageRange::mip(0));
-    }, [p = *copy, environment, specular, n = env.width](PassContext& pc) {
-        p->bind(pc.cmd());
-        const DescriptorWrite writes[] = {
-            DescriptorWrite::storage_image(pc.view(environment, ImageRange::mip(0), array_view)),
-            DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(0), array_view))};
-        p->push_descriptors(pc.cmd(), writes);
-        dispatch_cube(pc, n);
-    });
+    ImageHandle current = specular;
+    const uint32_t first = first_needed_specular_level(s);
+    if (first == 0) {
+        graph.add_compute_pass("specular level 0 (copy)", [&](PassBuilder& b) {
+            b.read_storage(environment, ImageRange::mip(0));
+            current = b.write_storage(specular, ImageRange::mip(0));
+        }, [p = *copy, environment, specular, n = env.width](PassContext& pc) {
+            p->bind(pc.cmd());
+            const DescriptorWrite writes[] = {
+                DescriptorWrite::storage_image(pc.view(environment, ImageRange::mip(0), array_view)),
+                DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(0), array_view))};
+            p->push_descriptors(pc.cmd(), writes);
+            dispatch_cube(pc, n);
+        });
+    }
 
     const std::vector<float> roughness = specular_level_roughness(s.levels);
-    for (uint32_t m = 1; m < s.levels; ++m) {
+    for (uint32_t m = std::max(first, 1u); m < s.levels; ++m) {
         const float r = roughness[m];
         const SpecularMethod method = specular_level_method(s, r);
         const uint32_t n = out.mip_width(m);

@@ -31,12 +31,18 @@ struct SpecularSettings {
     uint32_t levels = 6;               // roughness of level m = m / (levels - 1)
     uint32_t sample_count = 1024;      // importance / filtered
     float automatic_convolve_from = 0.3f;  // automatic: convolve at and above this roughness
+    // Model no more than the scene needs: levels that no lookup with roughness >= this
+    // reaches (trilinear reads floor(roughness x (levels - 1)) and the level above) are
+    // not computed; their texels stay undefined.
+    float min_roughness = 0.0f;
 };
 
 // Roughness of every level (level 0 = 0, last = 1).
 std::vector<float> specular_level_roughness(uint32_t levels);
 // The method a level actually uses.
 SpecularMethod specular_level_method(const SpecularSettings& settings, float roughness);
+// The first level a lookup with roughness >= settings.min_roughness can read.
+uint32_t first_needed_specular_level(const SpecularSettings& settings);
 // Face size of the source level the convolve method reads for a roughness: texels of
 // about a quarter of the GGX lobe's width, between 8 and 64 (the texel list keeps each
 // block's radiance-weighted direction, so a sun stays where it is).
