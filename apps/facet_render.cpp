@@ -59,6 +59,9 @@ cli::Parser make_parser() {
         .flag("--no-skybox", "black background instead of the environment")
         .option("--samples", "N", "MSAA samples: 1, 2, 4 (default) or 8")
         .flag("--height-correlated", "glTF's height-correlated Smith term for lights (default Schlick-GGX)")
+        .flag("--multiscatter", "energy compensation for multiple scattering (Kulla-Conty; needs --env)")
+        .option("--specular-dir", "mirror|dominant",
+                "IBL specular lookup along R (default) or bent towards n for rough lobes (Frostbite)")
         .option("--ibl-intensity", "S", "scale of the image-based lighting (default 1)")
         .option("--env-width", "N", "width of a built-in environment (default 1024)")
         .option("--ibl-size", "N", "cube face size of the bake (default: environment height / 2)")
@@ -144,6 +147,13 @@ std::optional<Options> parse(int argc, char** argv) {
         j.frame.samples = uint32_t(n);
     }
     j.frame.height_correlated = a.has("--height-correlated");
+    j.frame.multiscatter = a.has("--multiscatter");
+    if (a.has("--specular-dir")) {
+        const std::string d = a.get("--specular-dir");
+        if (d != "mirror" && d != "dominant")
+            throw std::invalid_argument("--specular-dir: expected mirror or dominant, got '" + d + "'");
+        j.frame.dominant_direction = d == "dominant";
+    }
     if (a.has("--ibl-intensity")) j.ibl_intensity = number(a, "--ibl-intensity", 0.0f, 1e6f);
     if (a.has("--env-width")) {
         j.env_width = uint32_t(cli::parse_int(a.get("--env-width"), "--env-width", 2, 16384));
@@ -192,6 +202,7 @@ std::string describe(const Options& o, const RenderSession& session, const Rende
     j.value("gamma", f.display.gamma > 0 ? std::to_string(f.display.gamma) : std::string("sRGB"));
     j.value("msaa_samples", f.samples).value("skybox", f.skybox && session.environment() != nullptr);
     j.value("smith", f.height_correlated ? "height-correlated (glTF)" : "Schlick-GGX k = (r+1)^2/8");
+    j.value("multiscatter", f.multiscatter).value("specular_lookup", f.dominant_direction ? "dominant" : "mirror");
     j.value("lights", uint32_t(f.lights.size()));
     j.begin_array("views");
     for (const std::string& name : view_files) j.value({}, name);

@@ -174,7 +174,7 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
         // Model no more than the scene needs: pure metals need no irradiance.
         IblSettings requested = job.ibl;
         const SceneNeeds needs = scene_needs(s->scene);
-        requested.want_irradiance = needs.diffuse;
+        requested.want_irradiance = needs.diffuse || job.frame.multiscatter;
         requested.specular.min_roughness = needs.min_roughness;
         s->ibl_settings = resolved_ibl_settings(requested, *s->env);
         s->ibl_bake = std::make_unique<IblBake>(context, *s->programs);

@@ -325,6 +325,52 @@ TEST_F(ForwardRenderTest, SpecularWithBothSmithTerms) {
     }
 }
 
+// Energy: a white metal (F0 = 1) under radiance 1 loses 1 - E(mu) to single scattering,
+// most at roughness 1; multiscatter compensation brings every pixel back to 1 within 1%.
+TEST_F(ForwardRenderTest, MultiscatterRestoresTheEnergyOfRoughWhiteMetal) {
+    Scene scene = builtin_scene("builtin:spheres", find_material_preset("silver")).value();
+    for (Material& m : scene.materials) m.base_color = glm::vec4(1.0f);
+    RenderJob job = small_job("", "builtin:white");
+    job.ibl.lut.size = 64;
+    job.ibl.lut.sample_count = 1024;
+    job.frame.width = 112;
+    job.frame.height = 32;
+    job.frame.skybox = false;
+    job.frame.views = {View::roughness, View::normal};
+    for (bool multiscatter : {false, true}) {
+        job.frame.multiscatter = multiscatter;
+        auto session = RenderSession::create(ctx(), job, scene);
+        ASSERT_TRUE(session) << session.error().message;
+        auto images = (*session)->render_frame();
+        ASSERT_TRUE(images) << images.error().message;
+        const glm::vec3 eye = (*session)->camera().position;
+        double lowest = 2, highest = 0, rough_facing = 0;
+        int facing = 0;
+        for (size_t i = 0; i < size_t(112) * 32; ++i) {
+            if (images->hdr[i * 4 + 3] < 1.0f) continue;
+            const float value = images->hdr[i * 4 + 1];
+            lowest = std::min(lowest, double(value));
+            highest = std::max(highest, double(value));
+            // Roughness 1, n.v near 1 (the sphere's centre as seen from the camera).
+            const float* n = &images->views[1].second[i * 4];
+            if (images->views[0].second[i * 4] > 0.99f && glm::dot(glm::vec3(n[0], n[1], n[2]), glm::normalize(eye)) > 0.99f) {
+                rough_facing += value;
+                ++facing;
+            }
+        }
+        ASSERT_GT(facing, 0);
+        rough_facing /= facing;
+        std::printf("multiscatter %s: white metal between %.4f and %.4f; roughness 1 facing the camera %.4f\n",
+                    multiscatter ? "on " : "off", lowest, highest, rough_facing);
+        if (multiscatter) {
+            EXPECT_GT(lowest, 0.99);
+            EXPECT_LT(highest, 1.01);
+        } else {
+            EXPECT_LT(rough_facing, 0.75);  // single scattering alone loses a quarter or more
+        }
+    }
+}
+
 // Only what the frame needs: no bake without an environment, no skybox pass when it is
 // off, one pipeline variant for 49 spheres of one feature set.
 TEST_F(ForwardRenderTest, GraphHoldsOnlyWhatTheFrameNeeds) {

@@ -93,7 +93,7 @@ ForwardRenderer::~ForwardRenderer() = default;
 
 Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene, uint32_t material, View view,
                                                            VkSampleCountFlagBits samples, bool ibl,
-                                                           bool height_correlated) {
+                                                           const FrameSettings& settings) {
     const Material& m = scene.scene().materials.at(material);
     std::vector<ShaderDefine> defines;
     auto define_if = [&](bool on, const char* name) {
@@ -109,7 +109,9 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     define_if(blend, "ALPHA_BLEND");
     define_if(m.double_sided, "DOUBLE_SIDED");
     define_if(ibl, "USE_IBL");
-    define_if(height_correlated, "HEIGHT_CORRELATED");
+    define_if(settings.height_correlated, "HEIGHT_CORRELATED");
+    define_if(ibl && settings.multiscatter, "MULTISCATTER");
+    define_if(ibl && settings.dominant_direction, "DOMINANT_DIRECTION");
     defines.push_back({"VIEW", std::to_string(int(view))});
 
     Pipeline::GraphicsDesc desc;
@@ -186,7 +188,7 @@ Result<FrameImages> ForwardRenderer::add_passes(RenderGraph& graph, const GpuSce
     std::vector<const Pipeline*> final_pipelines(scene.instances.size());
     for (uint32_t i = 0; i < scene.instances.size(); ++i) {
         const uint32_t material = scene.primitives.at(scene.instances[i].primitive).material;
-        auto p = material_pipeline(gpu, material, View::final_color, samples, ibl.has_value(), s.height_correlated);
+        auto p = material_pipeline(gpu, material, View::final_color, samples, ibl.has_value(), s);
         if (!p) return p.error();
         final_pipelines[i] = *p;
     }
@@ -195,7 +197,7 @@ Result<FrameImages> ForwardRenderer::add_passes(RenderGraph& graph, const GpuSce
         std::vector<const Pipeline*> pipelines(scene.instances.size());
         for (uint32_t i = 0; i < scene.instances.size(); ++i) {
             const uint32_t material = scene.primitives.at(scene.instances[i].primitive).material;
-            auto p = material_pipeline(gpu, material, v, VK_SAMPLE_COUNT_1_BIT, ibl.has_value(), s.height_correlated);
+            auto p = material_pipeline(gpu, material, v, VK_SAMPLE_COUNT_1_BIT, ibl.has_value(), s);
             if (!p) return p.error();
             pipelines[i] = *p;
         }

@@ -43,6 +43,8 @@ struct FrameSettings {
     DisplaySettings display;
     bool skybox = true;
     bool height_correlated = false;  // glTF's Smith visibility for punctual lights
+    bool multiscatter = false;       // energy compensation (needs IBL: LUT and irradiance)
+    bool dominant_direction = false; // specular lookup bent towards n for rough lobes
     std::vector<Light> lights;       // every punctual light of the frame
     std::vector<View> views;         // extra images, each RGBA32F, one sample per pixel
 };
@@ -72,7 +74,7 @@ private:
         std::vector<uint32_t> blend;   // back to front
     };
     Result<const Pipeline*> material_pipeline(const GpuScene& scene, uint32_t material, View view,
-                                              VkSampleCountFlagBits samples, bool ibl, bool height_correlated);
+                                              VkSampleCountFlagBits samples, bool ibl, const FrameSettings& settings);
     DrawList draw_list(const GpuScene& scene, const CameraView& camera) const;
 
     Context& context_;

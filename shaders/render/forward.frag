@@ -4,7 +4,8 @@
 // kd = (1 - F)(1 - metalness). Variants (defines) carry only the features a material
 // uses: HAS_BASE_COLOR_MAP, HAS_METALLIC_ROUGHNESS_MAP, HAS_NORMAL_MAP,
 // HAS_OCCLUSION_MAP, HAS_EMISSIVE_MAP, ALPHA_MASK, ALPHA_BLEND, DOUBLE_SIDED, USE_IBL,
-// HEIGHT_CORRELATED (glTF's Smith term instead of Schlick-GGX), VIEW (what is written:
+// HEIGHT_CORRELATED (glTF's Smith term instead of Schlick-GGX), MULTISCATTER (energy
+// compensation), DOMINANT_DIRECTION (bent specular lookup), VIEW (what is written:
 // render/views.glsl).
 #include "brdf.glsl"
 #include "render/forward_interface.glsl"
@@ -129,6 +130,17 @@ void main() {
     float NdotV = clamp(dot(n, v), 0.0, 1.0);
 
     vec3 diffuse = vec3(0.0), specular = vec3(0.0);
+#ifdef USE_IBL
+    // Split-sum scale and bias, and the average albedo E_avg (LUT's third channel).
+    vec3 lut = texture(brdf_lut, vec2(NdotV, s.roughness)).rgb;
+#endif
+#if defined(MULTISCATTER) && defined(USE_IBL)
+    // Single scattering loses 1 - E(mu) of the energy for F0 = 1 (E = A + B); lights get it
+    // back by scaling the lobe by 1 + F0 (1 / E - 1) (Turquin 2019).
+    vec3 light_energy = 1.0 + s.F0 * (1.0 / max(lut.x + lut.y, 1e-3) - 1.0);
+#else
+    vec3 light_energy = vec3(1.0);
+#endif
     // The component views show the terms for the first light, or for the mirror
     // direction (h = n) when the scene has no light.
     vec3 view_l = reflect(-v, n);
@@ -146,22 +158,45 @@ void main() {
         vec3 F = s.specular_weight * F_Schlick(clamp(dot(h, v), 0.0, 1.0), s.F0);
         vec3 kd = (1.0 - F) * (1.0 - s.metallic);
         diffuse += kd * s.albedo / PI * incident * NdotL;
-        specular += F * specular_DG(NdotV, NdotL, clamp(dot(n, h), 0.0, 1.0), s.roughness) * incident * NdotL;
+        specular += light_energy * F * specular_DG(NdotV, NdotL, clamp(dot(n, h), 0.0, 1.0), s.roughness) * incident *
+                    NdotL;
     }
     vec3 irradiance = vec3(0.0), prefiltered = vec3(0.0);
 #ifdef USE_IBL
     {
         float intensity = frame.ibl.x;
-        vec2 AB = texture(brdf_lut, vec2(NdotV, s.roughness)).rg;
         // The split sum's directional albedo E = F0 A + B (Karis 2013).
-        vec3 E = s.specular_weight * (s.F0 * AB.x + AB.y);
+        vec3 E = s.specular_weight * (s.F0 * lut.x + lut.y);
+        irradiance = texture(irradiance_map, n).rgb * intensity;
+#ifdef MULTISCATTER
+        // Kulla and Conty 2017: the multiple-scattering lobe f_ms = F_ms (1 - E(mu_o))
+        // (1 - E(mu_i)) / (pi (1 - E_avg)), integrated against the environment with
+        // (1 - E(mu_i)) replaced by its cosine-weighted mean 1 - E_avg, is
+        // F_ms (1 - E(mu_o)) times the irradiance (exact under uniform light).
+        float e_single = lut.x + lut.y;
+        vec3 f_avg = s.F0 + (1.0 - s.F0) / 21.0;
+        vec3 f_ms = f_avg * f_avg * lut.z / (1.0 - f_avg * (1.0 - lut.z));
+        vec3 E_ms = s.specular_weight * f_ms * (1.0 - e_single);
+        specular += E_ms * irradiance * s.occlusion;
+#endif
         // The thesis' kd/ks split with F_SchlickRoughness, capped at 1 - E: at grazing
         // angles on smooth dielectrics E exceeds F_SchlickRoughness by up to ~1%, and
         // diffuse + specular must not reflect more than arrives.
         vec3 F = s.specular_weight * F_SchlickRoughness(NdotV, s.F0, s.roughness);
+#ifdef MULTISCATTER
+        vec3 kd = min(1.0 - F, 1.0 - E - E_ms) * (1.0 - s.metallic);
+#else
         vec3 kd = min(1.0 - F, 1.0 - E) * (1.0 - s.metallic);
-        irradiance = texture(irradiance_map, n).rgb * intensity;
-        prefiltered = textureLod(specular_map, reflect(-v, n), s.roughness * frame.ibl.y).rgb * intensity;
+#endif
+        vec3 lookup = reflect(-v, n);
+#ifdef DOMINANT_DIRECTION
+        // Rough lobes lean towards n (Lagarde and de Rousiers 2014, "Moving Frostbite to
+        // PBR", listing 22, with alpha = roughness^2 as their roughness).
+        float alpha = s.roughness * s.roughness;
+        float smoothness = clamp(1.0 - alpha, 0.0, 1.0);
+        lookup = normalize(mix(n, lookup, smoothness * (sqrt(smoothness) + alpha)));
+#endif
+        prefiltered = textureLod(specular_map, lookup, s.roughness * frame.ibl.y).rgb * intensity;
         diffuse += kd * s.albedo * irradiance * s.occlusion;
         specular += prefiltered * E * s.occlusion;
     }
