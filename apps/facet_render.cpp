@@ -28,6 +28,8 @@ struct Options {
     RenderJob job;
     std::string out, device;
     bool validation = false;
+    bool reference = false;
+    ReferenceSettings reference_settings;
 };
 
 cli::Parser make_parser() {
@@ -67,6 +69,10 @@ cli::Parser make_parser() {
         .option("--ibl-size", "N", "cube face size of the bake (default: environment height / 2)")
         .option("--ibl-samples", "N", "GGX samples per texel for smooth specular levels (default 1024)")
         .flag("--sanitize", "replace NaN, Inf and negative environment texels with 0 instead of failing")
+        .flag("--reference", "ground truth instead of the split sum: Monte Carlo over the whole environment\n"
+                             "                          (BRDF + environment sampling, MIS) until the noise target")
+        .option("--reference-noise", "X", "relative standard error to reach (default 0.01)")
+        .option("--reference-samples", "N", "most samples per pixel (default 4096)")
         .option("--device", "NAME|INDEX", "Vulkan device (default: FACET_DEVICE, a GPU, else lavapipe)")
         .flag("--validation", "enable the Khronos validation layer");
     return p;
@@ -163,6 +169,11 @@ std::optional<Options> parse(int argc, char** argv) {
     if (a.has("--ibl-samples"))
         j.ibl.specular.sample_count = uint32_t(cli::parse_int(a.get("--ibl-samples"), "--ibl-samples", 1, 1 << 20));
     j.sanitize = a.has("--sanitize");
+    o.reference = a.has("--reference");
+    if (a.has("--reference-noise")) o.reference_settings.noise_target = number(a, "--reference-noise", 1e-4f, 1.0f);
+    if (a.has("--reference-samples"))
+        o.reference_settings.max_samples =
+            uint32_t(cli::parse_int(a.get("--reference-samples"), "--reference-samples", 1, 1 << 20));
     o.device = a.get("--device");
     o.validation = a.has("--validation");
     return o;
@@ -173,7 +184,8 @@ void write_vec3(JsonWriter& j, const char* key, glm::vec3 v) {
 }
 
 std::string describe(const Options& o, const RenderSession& session, const RenderedImages& images,
-                     const std::string& context_device, const std::vector<std::string>& view_files) {
+                     const std::string& context_device, const std::vector<std::string>& view_files,
+                     const ReferenceStats& stats) {
     const CameraView& c = session.camera();
     const FrameSettings& f = session.frame();
     JsonWriter j;
@@ -204,6 +216,11 @@ std::string describe(const Options& o, const RenderSession& session, const Rende
     j.value("smith", f.height_correlated ? "height-correlated (glTF)" : "Schlick-GGX k = (r+1)^2/8");
     j.value("multiscatter", f.multiscatter).value("specular_lookup", f.dominant_direction ? "dominant" : "mirror");
     j.value("lights", uint32_t(f.lights.size()));
+    if (o.reference)
+        j.begin_object("reference").value("samples_per_pixel", stats.samples).value("noise", stats.noise)
+            .value("noise_target", o.reference_settings.noise_target).value("converged", stats.converged).end_object();
+    else
+        j.value("renderer", "forward, split sum");
     j.begin_array("views");
     for (const std::string& name : view_files) j.value({}, name);
     j.end_array();
@@ -235,8 +252,15 @@ int render(const Options& o) {
     if (!session) throw std::runtime_error(session.error().message);
     log("rendering " + std::to_string(o.job.frame.width) + "x" + std::to_string(o.job.frame.height) + " on " +
         context.device_name());
-    auto images = (*session)->render_frame();
+    ReferenceStats stats;
+    auto images = o.reference ? (*session)->render_reference(o.reference_settings, [&](const ReferenceStats& st) {
+        std::fprintf(stderr, "%s: reference: %u samples per pixel, noise %.4f (target %.4f)\n", program, st.samples,
+                     st.noise, o.reference_settings.noise_target);
+    }, &stats) : (*session)->render_frame();
     if (!images) throw std::runtime_error(images.error().message);
+    if (o.reference && !stats.converged)
+        log("warning: the reference stopped at " + std::to_string(stats.samples) + " samples per pixel with noise " +
+            std::to_string(stats.noise) + ", above the target");
 
     const std::string stem = stem_path(o.out);
     const float exposure = o.job.frame.display.exposure;
@@ -260,7 +284,7 @@ int render(const Options& o) {
     std::vector<std::string> view_names_written;
     for (const std::string& f : view_files) view_names_written.push_back(fs::path(f).filename().string());
     if (Status s = write_text_file(stem + ".json",
-                                   describe(o, **session, *images, context.device_name(), view_names_written));
+                                   describe(o, **session, *images, context.device_name(), view_names_written, stats));
         !s)
         throw std::runtime_error(s.error().message);
     double gpu_ms = 0;

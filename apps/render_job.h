@@ -13,6 +13,7 @@
 #include "graph/graph_run.h"
 #include "ibl/ibl_bake.h"
 #include "render/forward_renderer.h"
+#include "render/reference_renderer.h"
 #include "scene/scene.h"
 
 namespace facet {
@@ -61,6 +62,11 @@ public:
     // `pass_by_pass`, each pass is its own submission (waited for), so that GPU time is
     // attributed to the right pass on drivers that defer rasterisation (lavapipe).
     Result<RenderedImages> render_frame(bool pass_by_pass = false);
+    // The same frame from the reference renderer (render/reference_renderer.h): Monte
+    // Carlo over the whole environment until the noise target; views as requested.
+    Result<RenderedImages> render_reference(const ReferenceSettings& settings,
+                                            const ReferenceRenderer::Progress& progress = {},
+                                            ReferenceStats* stats = nullptr);
 
     const Scene& scene() const;
     const CameraView& camera() const;

@@ -184,6 +184,23 @@ TEST(FacetRender, WritesPngExrJsonAndViews) {
     EXPECT_GT(brightest, 1.0);  // HDR: the sun's highlight is not clamped
 }
 
+// The reference mode from the command line: it stops at the sample limit, says so when
+// the noise target was not reached, and records both in NAME.json.
+TEST(FacetRender, ReferenceModeReportsSamplesAndNoise) {
+    TempDir dir;
+    Ran r = run("--model builtin:sphere --env builtin:sky --reference --reference-samples 32 --reference-noise 0.0001" +
+                fast + " --out " + dir / "ref.png");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_EQ(r.output.find("Validation"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("32 samples per pixel"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("warning: the reference stopped at 32"), std::string::npos) << r.output;
+    std::ifstream in(dir / "ref.json");
+    const std::string json((std::istreambuf_iterator<char>(in)), {});
+    EXPECT_NE(json.find("\"samples_per_pixel\": 32"), std::string::npos) << json;
+    EXPECT_NE(json.find("\"converged\": false"), std::string::npos) << json;
+    EXPECT_EQ(read_pixels(dir / "ref.png").width, 96);
+}
+
 double channel_difference(const Pixels& a, const Pixels& b, double* fraction_over_16) {
     double sum = 0;
     size_t over = 0;

@@ -138,6 +138,30 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     return pipeline;
 }
 
+Result<ImageHandle> ForwardRenderer::add_skybox_pass(RenderGraph& graph, ImageHandle hdr, const FrameSettings& s,
+                                                     const IblInputs& ibl) {
+    const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
+    auto sky = programs_.compute("render/skybox.comp", bindings, sizeof(SkyConstants));
+    if (!sky) return sky.error();
+    glm::mat4 rotation = s.camera.view();
+    rotation[3] = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    const float aspect = float(s.width) / float(s.height);
+    const SkyConstants constants{glm::inverse(s.camera.projection(aspect) * rotation), 0.0f, ibl.intensity};
+    ImageHandle written;
+    graph.add_compute_pass("skybox", [&](PassBuilder& b) {
+        b.sample(ibl.cube);
+        written = b.read_write_storage(hdr);
+    }, [p = *sky, constants, hdr, cube = ibl.cube, sampler = ibl.cube_sampler, w = s.width, h = s.height](PassContext& pc) {
+        p->bind(pc.cmd());
+        const DescriptorWrite writes[] = {DescriptorWrite::sampled_image(pc.view(cube), sampler),
+                                          DescriptorWrite::storage_image(pc.view(hdr))};
+        p->push_descriptors(pc.cmd(), writes);
+        p->push_constants(pc.cmd(), constants);
+        vkCmdDispatch(pc.cmd(), group_count(w, 8), group_count(h, 8), 1);
+    });
+    return written;
+}
+
 ForwardRenderer::DrawList ForwardRenderer::draw_list(const GpuScene& gpu, const CameraView& camera) const {
     const Scene& scene = gpu.scene();
     DrawList list;
@@ -204,13 +228,6 @@ Result<FrameImages> ForwardRenderer::add_passes(RenderGraph& graph, const GpuSce
         view_pipelines.push_back(std::move(pipelines));
     }
     const bool draw_sky = s.skybox && ibl.has_value();
-    const Pipeline* sky = nullptr;
-    if (draw_sky) {
-        const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
-        auto p = programs_.compute("render/skybox.comp", bindings, sizeof(SkyConstants));
-        if (!p) return p.error();
-        sky = *p;
-    }
 
     FrameImages out;
     ImageDesc hdr_desc;
@@ -326,20 +343,9 @@ Result<FrameImages> ForwardRenderer::add_passes(RenderGraph& graph, const GpuSce
     });
 
     if (draw_sky) {
-        glm::mat4 rotation = view;
-        rotation[3] = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
-        const SkyConstants constants{glm::inverse(projection * rotation), 0.0f, ibl->intensity};
-        graph.add_compute_pass("skybox", [&](PassBuilder& b) {
-            b.sample(ibl->cube);
-            out.hdr = b.read_write_storage(out.hdr);
-        }, [sky, constants, hdr = out.hdr, cube = ibl->cube, sampler = ibl->cube_sampler, s](PassContext& pc) {
-            sky->bind(pc.cmd());
-            const DescriptorWrite writes[] = {DescriptorWrite::sampled_image(pc.view(cube), sampler),
-                                              DescriptorWrite::storage_image(pc.view(hdr))};
-            sky->push_descriptors(pc.cmd(), writes);
-            sky->push_constants(pc.cmd(), constants);
-            vkCmdDispatch(pc.cmd(), group_count(s.width, 8), group_count(s.height, 8), 1);
-        });
+        auto composited = add_skybox_pass(graph, out.hdr, s, *ibl);
+        if (!composited) return composited.error();
+        out.hdr = *composited;
     }
 
     ImageDesc ldr_desc = hdr_desc;

@@ -65,6 +65,11 @@ public:
     Result<FrameImages> add_passes(RenderGraph& graph, const GpuScene& scene, const FrameSettings& settings,
                                    const std::optional<IblInputs>& ibl);
 
+    // Composites the environment under `hdr` (RGBA32F, alpha = coverage) as seen by the
+    // frame's camera; returns the new version of `hdr`.
+    Result<ImageHandle> add_skybox_pass(RenderGraph& graph, ImageHandle hdr, const FrameSettings& settings,
+                                        const IblInputs& ibl);
+
     // Pipeline variants created so far (each a distinct feature set).
     size_t pipeline_variants() const { return variants_.size(); }
 

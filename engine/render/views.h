@@ -24,6 +24,7 @@ enum class View : int {
     specular = 12,    // radiance from the specular lobe (lights + IBL)
     irradiance = 13,  // irradiance cube at n (E/pi)
     prefiltered = 14, // prefiltered specular at R
+    specular_f0 = 15, // F0 (rgb) and the specular weight (a), for the reference renderer
 };
 
 const char* view_name(View view);

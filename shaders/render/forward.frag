@@ -226,6 +226,8 @@ void main() {
     out_color = vec4(irradiance, 1.0);
 #elif VIEW == VIEW_PREFILTERED
     out_color = vec4(prefiltered, 1.0);
+#elif VIEW == VIEW_SPECULAR_F0
+    out_color = vec4(s.F0, s.specular_weight);
 #else
     vec3 h = normalize(v + view_l);
     float NdotL = clamp(dot(n, view_l), 0.0, 1.0);

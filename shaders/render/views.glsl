@@ -16,4 +16,5 @@
 #define VIEW_SPECULAR 12
 #define VIEW_IRRADIANCE 13
 #define VIEW_PREFILTERED 14
+#define VIEW_SPECULAR_F0 15
 #endif

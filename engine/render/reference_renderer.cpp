@@ -1,0 +1,203 @@
+#include "render/reference_renderer.h"
+
+#include <cmath>
+#include <cstring>
+
+#include "gpu/context.h"
+#include "gpu/pipeline.h"
+#include "gpu/transfer.h"
+#include "graph/compiled_graph.h"
+#include "graph/graph_run.h"
+#include "render/environment_distribution.h"
+#include "shader/program_cache.h"
+
+namespace facet {
+namespace {
+
+struct Params {
+    glm::vec4 camera_position;
+    glm::uvec4 env;    // width, height, light count, flags
+    glm::uvec4 batch;  // samples, first sample index
+    glm::vec4 scale;   // environment intensity
+};
+
+struct LightData {
+    glm::vec4 position_range, direction_type, color_intensity, cone;
+};
+
+const ResourceState sampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                            VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+const ResourceState storage{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
+
+std::unique_ptr<Buffer> storage_buffer(Context& context, const void* data, size_t bytes, const char* name) {
+    auto buffer = std::make_unique<Buffer>(context, std::max<size_t>(bytes, 16), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                           VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::gpu_only, name);
+    if (bytes) upload_buffer(context, *buffer, std::as_bytes(std::span(static_cast<const std::byte*>(data), bytes)));
+    return buffer;
+}
+
+std::vector<float> read_floats(Context& context, const Image& image) {
+    auto bytes = read_image(context, image, 0, 0, VK_IMAGE_LAYOUT_GENERAL);
+    std::vector<float> values(bytes.size() / sizeof(float));
+    std::memcpy(values.data(), bytes.data(), values.size() * sizeof(float));
+    return values;
+}
+
+}  // namespace
+
+ReferenceRenderer::ReferenceRenderer(Context& context, ProgramCache& programs)
+    : context_(context), programs_(programs), nearest_(context, VK_FILTER_NEAREST, false, false, "reference nearest") {}
+
+ReferenceRenderer::~ReferenceRenderer() = default;
+
+void ReferenceRenderer::set_environment(std::span<const float> rgba, uint32_t width, uint32_t height,
+                                        float intensity) {
+    const EnvironmentDistribution d = build_environment_distribution(rgba, width, height);
+    radiance_ = storage_buffer(context_, rgba.data(), rgba.size_bytes(), "reference environment radiance");
+    distribution_ = storage_buffer(context_, d.values.data(), d.values.size() * sizeof(float),
+                                   "reference environment distribution");
+    env_width_ = width;
+    env_height_ = height;
+    env_intensity_ = intensity;
+}
+
+Result<ReferenceStats> ReferenceRenderer::accumulate(const ReferenceSurface& surface, const FrameSettings& frame,
+                                                     const ReferenceSettings& settings, const Progress& progress) {
+    if (!surface.normal || !surface.position || !surface.basecolor || !surface.metallic || !surface.roughness ||
+        !surface.f0 || !surface.emissive)
+        return Error{"reference: every surface view is needed"};
+    if (settings.batch_samples == 0 || settings.max_samples == 0)
+        return Error{"reference: the sample counts must be at least 1"};
+    const VkDescriptorType bindings[] = {
+        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+        VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,         VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+        VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,          VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
+    auto pipeline = programs_.compute("render/reference.comp", bindings, sizeof(Params));
+    if (!pipeline) return pipeline.error();
+
+    std::vector<LightData> lights;
+    for (const Light& l : frame.lights) {
+        const float cos_outer = std::cos(l.outer_cone), cos_inner = std::cos(l.inner_cone);
+        const float scale = 1.0f / std::max(cos_inner - cos_outer, 1e-4f);
+        lights.push_back({glm::vec4(l.position, l.range), glm::vec4(glm::normalize(l.direction), float(int(l.type))),
+                          glm::vec4(l.color, l.intensity), glm::vec4(scale, -cos_outer * scale, 0.0f, 0.0f)});
+    }
+    lights_ = storage_buffer(context_, lights.data(), lights.size() * sizeof(LightData), "reference lights");
+    if (!radiance_) {
+        const float zero[4] = {};
+        radiance_ = storage_buffer(context_, zero, sizeof zero, "reference environment radiance");
+        distribution_ = storage_buffer(context_, zero, sizeof zero, "reference environment distribution");
+    }
+
+    ImageDesc desc = surface.normal->desc();
+    desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                    VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    accumulation_ = std::make_unique<Image>(context_, desc, usage, "reference accumulation");
+    moments_ = std::make_unique<Image>(context_, desc, usage, "reference moments");
+    context_.submit_and_wait([&](VkCommandBuffer cmd) {
+        for (Image* image : {accumulation_.get(), moments_.get()}) {
+            VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+            b.dstStageMask = VK_PIPELINE_STAGE_2_CLEAR_BIT;
+            b.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+            b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+            b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+            b.image = image->handle();
+            b.subresourceRange = whole_range(image->desc());
+            VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+            dep.imageMemoryBarrierCount = 1;
+            dep.pImageMemoryBarriers = &b;
+            vkCmdPipelineBarrier2(cmd, &dep);
+            const VkClearColorValue zero{};
+            const VkImageSubresourceRange range = whole_range(image->desc());
+            vkCmdClearColorImage(cmd, image->handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
+        }
+        memory_barrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    });
+
+    ReferenceStats stats;
+    const Image* views[] = {surface.normal, surface.position, surface.basecolor, surface.metallic,
+                            surface.roughness, surface.f0, surface.emissive};
+    const char* view_names[] = {"normal", "position", "basecolor", "metallic", "roughness", "f0", "emissive"};
+    while (stats.samples < settings.max_samples) {
+        const uint32_t count = std::min(settings.batch_samples, settings.max_samples - stats.samples);
+        RenderGraph graph;
+        std::vector<ImageHandle> inputs;
+        for (int i = 0; i < 7; ++i)
+            inputs.push_back(graph.import_image(view_names[i], {views[i]->handle(), views[i]->desc(), sampled, sampled}));
+        ImageHandle acc = graph.import_image("accumulation", {accumulation_->handle(), desc, storage, storage});
+        ImageHandle mom = graph.import_image("moments", {moments_->handle(), desc, storage, storage});
+        Params params{glm::vec4(frame.camera.position, 1.0f),
+                      glm::uvec4(env_width_, env_height_, uint32_t(lights.size()), frame.height_correlated ? 1u : 0u),
+                      glm::uvec4(count, stats.samples, 0u, 0u), glm::vec4(env_intensity_, 0.0f, 0.0f, 0.0f)};
+        graph.add_compute_pass("reference batch", [&](PassBuilder& b) {
+            for (ImageHandle h : inputs) b.sample(h);
+            acc = b.read_write_storage(acc);
+            mom = b.read_write_storage(mom);
+        }, [&, p = *pipeline, params, inputs, acc, mom](PassContext& pc) {
+            p->bind(pc.cmd());
+            std::vector<DescriptorWrite> writes;
+            for (ImageHandle h : inputs) writes.push_back(DescriptorWrite::sampled_image(pc.view(h), nearest_.handle()));
+            writes.push_back(DescriptorWrite::storage_buffer(radiance_->handle()));
+            writes.push_back(DescriptorWrite::storage_buffer(distribution_->handle()));
+            writes.push_back(DescriptorWrite::storage_buffer(lights_->handle()));
+            writes.push_back(DescriptorWrite::storage_image(pc.view(acc)));
+            writes.push_back(DescriptorWrite::storage_image(pc.view(mom)));
+            p->push_descriptors(pc.cmd(), writes);
+            p->push_constants(pc.cmd(), params);
+            vkCmdDispatch(pc.cmd(), group_count(desc.width, 8), group_count(desc.height, 8), 1);
+        });
+        CompiledGraph compiled = graph.compile();
+        GraphRun run(context_, compiled);
+        run.submit_and_wait();
+        stats.samples += count;
+
+        // Noise: spread of the batch means per pixel (equal batches only).
+        const std::vector<float> m = read_floats(context_, *moments_);
+        double se2 = 0, mean2 = 0;
+        for (size_t i = 0; i + 3 < m.size(); i += 4) {
+            const double n = m[i + 2];
+            if (n < 2) continue;
+            const double mean = m[i] / n, var = std::max(0.0, (m[i + 1] - m[i] * mean) / (n - 1));
+            se2 += var / n;
+            mean2 += mean * mean;
+        }
+        stats.noise = mean2 > 0 ? std::sqrt(se2 / mean2) : 0.0;
+        stats.converged = stats.samples >= settings.min_samples && stats.samples >= 2 * settings.batch_samples &&
+                          stats.noise <= settings.noise_target;
+        if (progress) progress(stats);
+        if (stats.converged) break;
+    }
+    return stats;
+}
+
+Result<ImageHandle> ReferenceRenderer::add_resolve_pass(RenderGraph& graph, ImageHandle accumulation,
+                                                        ImageHandle normal, ImageHandle frame_out) {
+    const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                         VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
+    auto pipeline = programs_.compute("render/reference_resolve.comp", bindings, 0);
+    if (!pipeline) return pipeline.error();
+    ImageHandle written;
+    graph.add_compute_pass("reference resolve", [&](PassBuilder& b) {
+        b.read_storage(accumulation);
+        b.sample(normal);
+        written = b.write_storage(frame_out);
+    }, [p = *pipeline, accumulation, normal, frame_out, sampler = nearest_.handle()](PassContext& pc) {
+        const ImageDesc& d = pc.desc(frame_out);
+        p->bind(pc.cmd());
+        const DescriptorWrite writes[] = {DescriptorWrite::storage_image(pc.view(accumulation)),
+                                          DescriptorWrite::sampled_image(pc.view(normal), sampler),
+                                          DescriptorWrite::storage_image(pc.view(frame_out))};
+        p->push_descriptors(pc.cmd(), writes);
+        vkCmdDispatch(pc.cmd(), group_count(d.width, 8), group_count(d.height, 8), 1);
+    });
+    return written;
+}
+
+}  // namespace facet

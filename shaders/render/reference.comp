@@ -1,0 +1,245 @@
+#version 460
+// Ground truth inside the engine: the reflectance equation integrated per pixel by Monte
+// Carlo over the whole environment, with no split sum and no prefiltering. Each batch
+// takes one BRDF sample (GGX for the specular lobe, cosine for the diffuse one) and one
+// environment sample (texels in proportion to luminance x solid angle) per pixel and
+// combines them with the balance heuristic (Veach and Guibas 1995); punctual lights are
+// added in closed form. The BRDF is the forward pass's: D_GGX, F_Schlick on h.v,
+// Smith/Schlick-GGX with k = r^2/2 for the environment (k = (r+1)^2/8 for lights, or
+// the height-correlated term), kd = (1 - F)(1 - metalness), Lambert. The environment is
+// piecewise constant per texel, as in the brute-force sums of the tests.
+#include "brdf.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(binding = 0) uniform sampler2D normal_view;     // world normal, a = coverage
+layout(binding = 1) uniform sampler2D position_view;   // world position
+layout(binding = 2) uniform sampler2D basecolor_view;
+layout(binding = 3) uniform sampler2D metallic_view;
+layout(binding = 4) uniform sampler2D roughness_view;
+layout(binding = 5) uniform sampler2D f0_view;          // rgb F0, a specular weight
+layout(binding = 6) uniform sampler2D emissive_view;
+layout(binding = 7, std430) readonly buffer Radiance { vec4 radiance[]; };  // W x H, row 0 = top
+// marginal[H] (row CDF, last = 1), then conditional[H * W] (per-row column CDFs),
+// then pdf_texel[H * W]: probability of picking each texel.
+layout(binding = 8, std430) readonly buffer Distribution { float distribution[]; };
+struct Light {
+    vec4 position_range;
+    vec4 direction_type;
+    vec4 color_intensity;
+    vec4 cone;
+};
+layout(binding = 9, std430) readonly buffer Lights { Light lights[]; };
+layout(binding = 10, rgba32f) uniform image2D accumulation;  // rgb sum, a = samples
+layout(binding = 11, rgba32f) uniform image2D moments;       // x: sum of Y, y: sum of Y^2 (per batch mean)
+
+layout(push_constant) uniform Params {
+    vec4 camera_position;  // xyz
+    uvec4 env;             // width, height, light count, flags (1: height-correlated lights)
+    uvec4 batch;           // samples in this batch, first sample index
+    vec4 scale;            // x: environment intensity
+} params;
+
+uint hash(uint x) {
+    // PCG-style integer hash (O'Neill 2014 output function).
+    x = x * 747796405u + 2891336453u;
+    uint word = ((x >> ((x >> 28u) + 4u)) ^ x) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+float random(inout uint state) {
+    state = hash(state);
+    return float(state >> 8) * (1.0 / 16777216.0);
+}
+
+vec3 texel_direction(uint x, uint y, float jx, float jy) {
+    float W = float(params.env.x), H = float(params.env.y);
+    // Uniform in solid angle inside the texel: linear in longitude and in sin(latitude).
+    float lat_top = (0.5 - float(y) / H) * PI, lat_bottom = (0.5 - float(y + 1u) / H) * PI;
+    float sin_lat = mix(sin(lat_bottom), sin(lat_top), jy);
+    float cos_lat = sqrt(max(0.0, 1.0 - sin_lat * sin_lat));
+    float phi = ((float(x) + jx) / W - 0.5) * 2.0 * PI;
+    return vec3(cos_lat * cos(phi), sin_lat, cos_lat * sin(phi));
+}
+
+float texel_solid_angle(uint y) {
+    float W = float(params.env.x), H = float(params.env.y);
+    float lat_top = (0.5 - float(y) / H) * PI, lat_bottom = (0.5 - float(y + 1u) / H) * PI;
+    return 2.0 * PI / W * (sin(lat_top) - sin(lat_bottom));
+}
+
+uvec2 texel_of(vec3 d) {
+    float u = atan(d.z, d.x) / (2.0 * PI) + 0.5;
+    float v_image = 0.5 - asin(clamp(d.y, -1.0, 1.0)) / PI;
+    uint x = min(uint(u * float(params.env.x)), params.env.x - 1u);
+    uint y = min(uint(v_image * float(params.env.y)), params.env.y - 1u);
+    return uvec2(x, y);
+}
+
+// Smallest index i of cdf[first .. first + count) with cdf[i] > u.
+uint search(uint first, uint count, float u) {
+    uint lo = 0u, hi = count - 1u;
+    while (lo < hi) {
+        uint mid = (lo + hi) / 2u;
+        if (distribution[first + mid] > u) hi = mid;
+        else lo = mid + 1u;
+    }
+    return lo;
+}
+
+float env_pdf(vec3 d) {
+    uvec2 t = texel_of(d);
+    uint W = params.env.x, H = params.env.y;
+    return distribution[H + H * W + t.y * W + t.x] / texel_solid_angle(t.y);
+}
+
+vec3 env_radiance(vec3 d) {
+    uvec2 t = texel_of(d);
+    return radiance[t.y * params.env.x + t.x].rgb * params.scale.x;
+}
+
+struct Surface {
+    vec3 n, v, albedo, F0;
+    float metallic, roughness, weight, p_specular;
+};
+
+vec3 brdf(Surface s, vec3 l, float k) {
+    float NdotL = dot(s.n, l), NdotV = max(dot(s.n, s.v), 0.0);
+    if (NdotL <= 0.0) return vec3(0.0);
+    vec3 h = normalize(s.v + l);
+    vec3 F = s.weight * F_Schlick(clamp(dot(h, s.v), 0.0, 1.0), s.F0);
+    float D = D_GGX(clamp(dot(s.n, h), 0.0, 1.0), s.roughness);
+    float G = G_Smith(NdotV, NdotL, k);
+    vec3 kd = (1.0 - F) * (1.0 - s.metallic);
+    return kd * s.albedo / PI + D * F * G / max(4.0 * NdotL * NdotV, 1e-8);
+}
+
+// Density of the BRDF sampling strategy over solid angle.
+float brdf_pdf(Surface s, vec3 l) {
+    float NdotL = dot(s.n, l);
+    if (NdotL <= 0.0) return 0.0;
+    vec3 h = normalize(s.v + l);
+    float NdotH = clamp(dot(s.n, h), 0.0, 1.0);
+    float specular = D_GGX(NdotH, s.roughness) * NdotH / max(4.0 * dot(h, s.v), 1e-8);
+    return s.p_specular * specular + (1.0 - s.p_specular) * NdotL / PI;
+}
+
+vec3 sample_brdf(Surface s, inout uint rng) {
+    vec3 up = abs(s.n.y) < 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
+    vec3 t = normalize(cross(up, s.n)), b = cross(s.n, t);
+    float u1 = random(rng), u2 = random(rng);
+    if (random(rng) < s.p_specular) {
+        float alpha = max(s.roughness * s.roughness, MIN_ALPHA);
+        float cos_h = sqrt((1.0 - u1) / (1.0 + (alpha * alpha - 1.0) * u1));
+        float sin_h = sqrt(max(0.0, 1.0 - cos_h * cos_h));
+        vec3 h = t * (sin_h * cos(2.0 * PI * u2)) + b * (sin_h * sin(2.0 * PI * u2)) + s.n * cos_h;
+        return reflect(-s.v, h);
+    }
+    float r = sqrt(u1);
+    return t * (r * cos(2.0 * PI * u2)) + b * (r * sin(2.0 * PI * u2)) + s.n * sqrt(max(0.0, 1.0 - u1));
+}
+
+vec3 sample_environment(inout uint rng, out float pdf) {
+    uint W = params.env.x, H = params.env.y;
+    uint y = search(0u, H, random(rng));
+    uint x = search(H + y * W, W, random(rng));
+    vec3 d = texel_direction(x, y, random(rng), random(rng));
+    pdf = distribution[H + H * W + y * W + x] / texel_solid_angle(y);
+    return d;
+}
+
+vec3 punctual(Surface s, vec3 p) {
+    vec3 sum = vec3(0.0);
+    for (uint i = 0u; i < params.env.z; ++i) {
+        Light light = lights[i];
+        uint type = uint(light.direction_type.w);
+        vec3 incident = light.color_intensity.rgb * light.color_intensity.a;
+        vec3 l;
+        if (type == 0u) {
+            l = -normalize(light.direction_type.xyz);
+        } else {
+            vec3 to_light = light.position_range.xyz - p;
+            float d2 = max(dot(to_light, to_light), 1e-8);
+            l = to_light * inversesqrt(d2);
+            float attenuation = 1.0 / d2;
+            float range = light.position_range.w;
+            if (range > 0.0) {
+                float ratio = d2 / (range * range);
+                attenuation *= clamp(1.0 - ratio * ratio, 0.0, 1.0);
+            }
+            if (type == 2u) {
+                float cone = clamp(dot(normalize(light.direction_type.xyz), -l) * light.cone.x + light.cone.y, 0.0, 1.0);
+                attenuation *= cone * cone;
+            }
+            incident *= attenuation;
+        }
+        float NdotL = dot(s.n, l);
+        if (NdotL <= 0.0) continue;
+        if ((params.env.w & 1u) != 0u) {
+            vec3 h = normalize(s.v + l);
+            float NdotV = max(dot(s.n, s.v), 0.0);
+            vec3 F = s.weight * F_Schlick(clamp(dot(h, s.v), 0.0, 1.0), s.F0);
+            float DV = D_GGX(clamp(dot(s.n, h), 0.0, 1.0), s.roughness) *
+                       V_SmithGGXCorrelated(NdotV, NdotL, max(s.roughness * s.roughness, MIN_ALPHA));
+            sum += ((1.0 - F) * (1.0 - s.metallic) * s.albedo / PI + DV * F) * incident * NdotL;
+        } else {
+            sum += brdf(s, l, k_direct(s.roughness)) * incident * NdotL;
+        }
+    }
+    return sum;
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = imageSize(accumulation);
+    if (any(greaterThanEqual(pixel, size))) return;
+    vec4 normal = texelFetch(normal_view, pixel, 0);
+    vec4 position = texelFetch(position_view, pixel, 0);
+    vec3 batch_sum = vec3(0.0);
+    uint count = params.batch.x;
+    if (normal.a < 0.5) {
+        // No surface: the skybox pass composites the environment here afterwards.
+        vec4 acc = imageLoad(accumulation, pixel);
+        imageStore(accumulation, pixel, vec4(acc.rgb, acc.a + float(count)));
+        return;
+    }
+    Surface s;
+    s.n = normalize(normal.xyz);
+    s.v = normalize(params.camera_position.xyz - position.xyz);
+    s.albedo = texelFetch(basecolor_view, pixel, 0).rgb;
+    s.metallic = texelFetch(metallic_view, pixel, 0).r;
+    s.roughness = texelFetch(roughness_view, pixel, 0).r;
+    vec4 f0 = texelFetch(f0_view, pixel, 0);
+    s.F0 = f0.rgb;
+    s.weight = f0.a;
+    s.p_specular = s.weight <= 0.0 ? 0.0 : mix(0.5, 1.0, s.metallic);
+    float k = k_ibl(s.roughness);
+    vec3 p = position.xyz;
+
+    uint rng = hash(uint(pixel.x) * 1973u + uint(pixel.y) * 9277u + params.batch.y * 26699u);
+    bool has_env = params.env.x > 0u;
+    for (uint i = 0u; i < count && has_env; ++i) {
+        // BRDF sample.
+        vec3 l = sample_brdf(s, rng);
+        float pb = brdf_pdf(s, l);
+        if (pb > 0.0) {
+            float pe = env_pdf(l);
+            batch_sum += brdf(s, l, k) * env_radiance(l) * dot(s.n, l) / (pb + pe);
+        }
+        // Environment sample.
+        float pe;
+        l = sample_environment(rng, pe);
+        if (pe > 0.0 && dot(s.n, l) > 0.0) {
+            float pb2 = brdf_pdf(s, l);
+            batch_sum += brdf(s, l, k) * env_radiance(l) * dot(s.n, l) / (pb2 + pe);
+        }
+    }
+    vec3 batch_mean = count > 0u ? batch_sum / float(count) : vec3(0.0);
+    vec3 exact = punctual(s, p) + texelFetch(emissive_view, pixel, 0).rgb;
+    vec4 acc = imageLoad(accumulation, pixel);
+    imageStore(accumulation, pixel, vec4(acc.rgb + batch_sum + exact * float(count), acc.a + float(count)));
+    // Batch means give the noise estimate: their spread over batches of equal size.
+    float y = dot(batch_mean + exact, vec3(0.2126, 0.7152, 0.0722));
+    vec4 m = imageLoad(moments, pixel);
+    imageStore(moments, pixel, vec4(m.x + y, m.y + y * y, m.z + 1.0, 0.0));
+}
