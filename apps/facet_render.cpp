@@ -61,6 +61,8 @@ cli::Parser make_parser() {
         .flag("--no-skybox", "black background instead of the environment")
         .option("--samples", "N", "MSAA samples: 1, 2, 4 (default) or 8")
         .flag("--height-correlated", "glTF's height-correlated Smith term for lights (default Schlick-GGX)")
+        .flag("--extract-lights", "take suns and lamps out of the environment and shade them as disk lights\n"
+                                  "                          with the full BRDF (the rest goes through the split sum)")
         .flag("--multiscatter", "energy compensation for multiple scattering (Kulla-Conty; needs --env)")
         .option("--specular-dir", "mirror|dominant",
                 "IBL specular lookup along R (default) or bent towards n for rough lobes (Frostbite)")
@@ -154,6 +156,7 @@ std::optional<Options> parse(int argc, char** argv) {
     }
     j.frame.height_correlated = a.has("--height-correlated");
     j.frame.multiscatter = a.has("--multiscatter");
+    j.extract_lights = a.has("--extract-lights");
     if (a.has("--specular-dir")) {
         const std::string d = a.get("--specular-dir");
         if (d != "mirror" && d != "dominant")
@@ -214,6 +217,15 @@ std::string describe(const Options& o, const RenderSession& session, const Rende
     j.value("gamma", f.display.gamma > 0 ? std::to_string(f.display.gamma) : std::string("sRGB"));
     j.value("msaa_samples", f.samples).value("skybox", f.skybox && session.environment() != nullptr);
     j.value("smith", f.height_correlated ? "height-correlated (glTF)" : "Schlick-GGX k = (r+1)^2/8");
+    j.begin_array("environment_lights");
+    for (const DiskLight& d : f.environment_lights) {
+        j.begin_object();
+        write_vec3(j, "direction", d.direction);
+        write_vec3(j, "radiance", d.radiance);
+        j.value("angular_radius_deg", double(glm::degrees(d.angular_radius))).value("power_fraction", d.power_fraction);
+        j.end_object();
+    }
+    j.end_array();
     j.value("multiscatter", f.multiscatter).value("specular_lookup", f.dominant_direction ? "dominant" : "mirror");
     j.value("lights", uint32_t(f.lights.size()));
     if (o.reference)

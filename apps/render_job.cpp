@@ -9,6 +9,7 @@
 #include "gpu/context.h"
 #include "gpu/transfer.h"
 #include "graph/compiled_graph.h"
+#include "ibl/light_extraction.h"
 #include "render/gpu_scene.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
@@ -34,6 +35,7 @@ struct RenderSession::State {
     std::unique_ptr<ForwardRenderer> renderer;
     std::unique_ptr<ReferenceRenderer> reference;
     std::unique_ptr<Sampler> nearest;
+    std::vector<float> original_texels;  // the environment before light extraction
     FrameSettings frame;
 };
 
@@ -174,6 +176,16 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
         if (s->env->image.sanitized_texels)
             say(job.env + ": replaced " + std::to_string(s->env->image.sanitized_texels) +
                 " NaN, Inf or negative texels with 0");
+        if (job.extract_lights) {
+            if (Status st = materialize_environment(context, *s->programs, *s->env); !st) return st.error();
+            s->original_texels = s->env->image.rgba;
+            LightExtraction extraction = extract_lights(s->env->image.rgba, s->env->width, s->env->height);
+            s->env->image.rgba = std::move(extraction.residual);
+            s->frame.environment_lights = extraction.lights;
+            say("extracted " + std::to_string(extraction.lights.size()) + " light(s) from " + job.env + ", " +
+                std::to_string(int(std::lround(100 * extraction.extracted_power_fraction))) + "% of its power");
+            for (const std::string& note : extraction.notes) say("light extraction: " + note);
+        }
         // Model no more than the scene needs: pure metals need no irradiance.
         IblSettings requested = job.ibl;
         const SceneNeeds needs = scene_needs(s->scene);
@@ -240,9 +252,12 @@ Result<RenderedImages> RenderSession::render_reference(const ReferenceSettings& 
     if (!s.reference) {
         s.reference = std::make_unique<ReferenceRenderer>(context, *s.programs);
         if (s.env) {
-            // The reference integrates the very texels the bake started from.
-            const Image* equirect = s.bake_run->transient_image(s.ibl_images.equirect);
-            const std::vector<float> texels = read_floats(context, *equirect, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+            // The reference integrates the very texels the bake started from (before any
+            // light extraction: the whole environment).
+            std::vector<float> texels = s.original_texels;
+            if (texels.empty())
+                texels = read_floats(context, *s.bake_run->transient_image(s.ibl_images.equirect),
+                                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
             s.reference->set_environment(texels, s.env->width, s.env->height, s.job.ibl_intensity);
         }
     }

@@ -34,6 +34,7 @@ struct RenderJob {
     bool gltf_camera = false;  // the file's first camera instead of framing the bounds
     std::vector<Light> extra_lights;
     float ibl_intensity = 1.0f;
+    bool extract_lights = false;  // suns and lamps out of the map, shaded as disk lights
 };
 
 struct RenderedImages {

@@ -201,6 +201,20 @@ TEST(FacetRender, ReferenceModeReportsSamplesAndNoise) {
     EXPECT_EQ(read_pixels(dir / "ref.png").width, 96);
 }
 
+// Light extraction from the command line: the built-in sky's sun becomes one disk light,
+// recorded in NAME.json.
+TEST(FacetRender, ExtractLightsFindsTheBuiltinSun) {
+    TempDir dir;
+    Ran r = run("--model builtin:sphere --env builtin:sky --extract-lights" + fast + " --out " + dir / "sun.png");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_EQ(r.output.find("Validation"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("extracted 1 light(s)"), std::string::npos) << r.output;
+    std::ifstream in(dir / "sun.json");
+    const std::string json((std::istreambuf_iterator<char>(in)), {});
+    EXPECT_NE(json.find("\"environment_lights\": ["), std::string::npos) << json;
+    EXPECT_NE(json.find("\"angular_radius_deg\""), std::string::npos) << json;
+}
+
 double channel_difference(const Pixels& a, const Pixels& b, double* fraction_over_16) {
     double sum = 0;
     size_t over = 0;

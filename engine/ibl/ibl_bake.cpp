@@ -5,7 +5,10 @@
 
 #include "gpu/context.h"
 #include "gpu/resources.h"
+#include "graph/compiled_graph.h"
+#include "graph/graph_run.h"
 #include "graph/transfer_passes.h"
+#include "gpu/transfer.h"
 #include "ibl/environment_cube.h"
 #include "shader/program_cache.h"
 
@@ -35,6 +38,29 @@ Result<EnvironmentSource> resolve_environment(const std::string& name, uint32_t 
     source.width = source.image.width;
     source.height = source.image.height;
     return source;
+}
+
+Status materialize_environment(Context& context, ProgramCache& programs, EnvironmentSource& source) {
+    if (!source.sky) return Ok{};
+    RenderGraph graph;
+    ImageDesc desc;
+    desc.width = source.width;
+    desc.height = source.height;
+    auto sky = add_procedural_sky_pass(graph, programs, *source.sky, graph.create_image("environment", desc));
+    if (!sky) return sky.error();
+    graph.export_image(*sky, {VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                              VK_ACCESS_2_TRANSFER_READ_BIT});
+    CompiledGraph compiled = graph.compile();
+    GraphRun run(context, compiled);
+    run.submit_and_wait();
+    auto bytes = read_image(context, *run.transient_image(*sky), 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    source.image.width = source.width;
+    source.image.height = source.height;
+    source.image.rgba.resize(bytes.size() / sizeof(float));
+    std::memcpy(source.image.rgba.data(), bytes.data(), source.image.rgba.size() * sizeof(float));
+    source.image.content_hash = source.content_hash;
+    source.sky.reset();
+    return Ok{};
 }
 
 IblSettings resolved_ibl_settings(const IblSettings& settings, const EnvironmentSource& source) {

@@ -36,6 +36,10 @@ Result<EnvironmentSource> resolve_environment(const std::string& name, uint32_t 
                                               bool sanitize = false);
 std::string builtin_environment_names();  // "builtin:sky, builtin:white"
 
+// A procedural environment's texels, computed on the GPU and read back, so that CPU
+// work (light extraction) can use them; file environments are left as they are.
+Status materialize_environment(Context& context, ProgramCache& programs, EnvironmentSource& source);
+
 struct IblSettings {
     uint32_t cube_size = 0;  // 0: input height / 2
     IrradianceSettings irradiance;

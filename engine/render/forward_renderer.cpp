@@ -41,7 +41,17 @@ struct SkyConstants {
     glm::mat4 inverse_view_projection;
     float lod;
     float intensity;
+    uint32_t disks;
+    float pad;
 };
+
+LightData disk_data(const DiskLight& d) {
+    LightData data{};
+    data.direction_type = glm::vec4(-d.direction, 3.0f);  // the direction the light travels
+    data.color_intensity = glm::vec4(d.radiance, 1.0f);
+    data.cone = glm::vec4(std::cos(d.angular_radius), d.angular_radius, 0.0f, 0.0f);
+    return data;
+}
 
 LightData light_data(const Light& l) {
     LightData d{};
@@ -140,21 +150,31 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
 
 Result<ImageHandle> ForwardRenderer::add_skybox_pass(RenderGraph& graph, ImageHandle hdr, const FrameSettings& s,
                                                      const IblInputs& ibl) {
-    const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
+    const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                                         VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
     auto sky = programs_.compute("render/skybox.comp", bindings, sizeof(SkyConstants));
     if (!sky) return sky.error();
+    std::vector<LightData> disks;
+    for (const DiskLight& d : s.environment_lights) disks.push_back(disk_data(d));
+    sky_disks_ = Buffer(context_, std::max<size_t>(1, disks.size()) * sizeof(LightData),
+                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::upload, "skybox disks");
+    if (!disks.empty()) std::memcpy(sky_disks_.mapped(), disks.data(), disks.size() * sizeof(LightData));
+    sky_disks_.flush();
     glm::mat4 rotation = s.camera.view();
     rotation[3] = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
     const float aspect = float(s.width) / float(s.height);
-    const SkyConstants constants{glm::inverse(s.camera.projection(aspect) * rotation), 0.0f, ibl.intensity};
+    const SkyConstants constants{glm::inverse(s.camera.projection(aspect) * rotation), 0.0f, ibl.intensity,
+                                 uint32_t(disks.size()), 0.0f};
     ImageHandle written;
     graph.add_compute_pass("skybox", [&](PassBuilder& b) {
         b.sample(ibl.cube);
         written = b.read_write_storage(hdr);
-    }, [p = *sky, constants, hdr, cube = ibl.cube, sampler = ibl.cube_sampler, w = s.width, h = s.height](PassContext& pc) {
+    }, [p = *sky, constants, hdr, cube = ibl.cube, sampler = ibl.cube_sampler, w = s.width, h = s.height,
+        disk_buffer = sky_disks_.handle()](PassContext& pc) {
         p->bind(pc.cmd());
         const DescriptorWrite writes[] = {DescriptorWrite::sampled_image(pc.view(cube), sampler),
-                                          DescriptorWrite::storage_image(pc.view(hdr))};
+                                          DescriptorWrite::storage_image(pc.view(hdr)),
+                                          DescriptorWrite::storage_buffer(disk_buffer)};
         p->push_descriptors(pc.cmd(), writes);
         p->push_constants(pc.cmd(), constants);
         vkCmdDispatch(pc.cmd(), group_count(w, 8), group_count(h, 8), 1);
@@ -197,11 +217,13 @@ Result<FrameImages> ForwardRenderer::add_passes(RenderGraph& graph, const GpuSce
     frame.view_projection = projection * view;
     frame.camera_position = glm::vec4(s.camera.position, 1.0f);
     frame.ibl = glm::vec4(ibl ? ibl->intensity : 0.0f, ibl ? float(ibl->specular_levels - 1) : 0.0f, 0.0f, 0.0f);
-    frame.counts = glm::uvec4(uint32_t(s.lights.size()), 0, 0, 0);
+    const uint32_t disks = ibl ? uint32_t(s.environment_lights.size()) : 0u;
+    frame.counts = glm::uvec4(uint32_t(s.lights.size()), disks, 0, 0);
     std::memcpy(frame_.mapped(), &frame, sizeof frame);
     frame_.flush();
     std::vector<LightData> lights;
     for (const Light& l : s.lights) lights.push_back(light_data(l));
+    for (uint32_t i = 0; i < disks; ++i) lights.push_back(disk_data(s.environment_lights[i]));
     lights_ = Buffer(context_, std::max<size_t>(1, lights.size()) * sizeof(LightData),
                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::upload, "frame lights");
     if (!lights.empty()) std::memcpy(lights_.mapped(), lights.data(), lights.size() * sizeof(LightData));

@@ -16,6 +16,7 @@
 #include "render/camera.h"
 #include "render/tonemap.h"
 #include "render/views.h"
+#include "ibl/light_extraction.h"
 #include "scene/scene.h"
 
 namespace facet {
@@ -46,6 +47,9 @@ struct FrameSettings {
     bool multiscatter = false;       // energy compensation (needs IBL: LUT and irradiance)
     bool dominant_direction = false; // specular lookup bent towards n for rough lobes
     std::vector<Light> lights;       // every punctual light of the frame
+    // Bright regions taken out of the environment before the bake (light extraction),
+    // shaded as disk lights with the full BRDF; the skybox shows them again.
+    std::vector<DiskLight> environment_lights;
     std::vector<View> views;         // extra images, each RGBA32F, one sample per pixel
 };
 
@@ -84,7 +88,7 @@ private:
 
     Context& context_;
     ProgramCache& programs_;
-    Buffer frame_, lights_;
+    Buffer frame_, lights_, sky_disks_;
     Sampler nearest_, lut_sampler_;
     std::set<std::string> variants_;
 };

@@ -119,6 +119,47 @@ float specular_DG(float NdotV, float NdotL, float NdotH, float roughness) {
 #endif
 }
 
+#ifdef USE_IBL
+// A bright region taken out of the environment (ibl/light_extraction.h): a cap of
+// half-angle theta around c with uniform radiance L, shaded with the full BRDF (the
+// environment's, k = r^2/2) by a sum over 32 directions spread evenly over the cap
+// (uniform in cos, golden-angle spiral). Lobes much narrower than the cap cannot be
+// resolved by 32 directions: there the cap acts as a mirror image, L times the lobe's
+// albedo (the LUT's F0 A + B) where R falls inside it, faded over the lobe's width.
+void disk_light(Surface s, vec3 v, float NdotV, Light light, vec3 lut, out vec3 diffuse, out vec3 specular) {
+    vec3 c = -normalize(light.direction_type.xyz);
+    float cos_theta = light.cone.x, theta = light.cone.y;
+    vec3 L = light.color_intensity.rgb * light.color_intensity.a;
+    vec3 up = abs(c.y) < 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
+    vec3 t = normalize(cross(up, c)), b = cross(c, t);
+    const uint N = 32u;
+    float omega = 2.0 * PI * (1.0 - cos_theta) / float(N);
+    float k = k_ibl(s.roughness);
+    diffuse = vec3(0.0);
+    vec3 sampled = vec3(0.0);
+    for (uint i = 0u; i < N; ++i) {
+        float z = 1.0 - (float(i) + 0.5) / float(N) * (1.0 - cos_theta);
+        float r = sqrt(max(0.0, 1.0 - z * z)), phi = float(i) * 2.39996323;
+        vec3 l = t * (r * cos(phi)) + b * (r * sin(phi)) + c * z;
+        float NdotL = dot(s.n, l);
+        if (NdotL <= 0.0) continue;
+        vec3 h = normalize(v + l);
+        vec3 F = s.specular_weight * F_Schlick(clamp(dot(h, v), 0.0, 1.0), s.F0);
+        diffuse += (1.0 - F) * (1.0 - s.metallic) * s.albedo / PI * NdotL;
+        float DG = D_GGX(clamp(dot(s.n, h), 0.0, 1.0), s.roughness) * G_Smith(NdotV, NdotL, k);
+        sampled += F * DG / max(4.0 * NdotV * NdotL, 1e-8) * NdotL;
+    }
+    diffuse *= L * omega;
+    sampled *= L * omega;
+    float alpha = max(s.roughness * s.roughness, MIN_ALPHA);
+    vec3 R = reflect(-v, s.n);
+    float angle = acos(clamp(dot(R, c), -1.0, 1.0));
+    float coverage = clamp((theta + alpha - angle) / (2.0 * alpha), 0.0, 1.0);
+    vec3 mirror = L * s.specular_weight * (s.F0 * lut.x + lut.y) * coverage;
+    specular = mix(mirror, sampled, clamp((alpha - theta / 6.0) / (theta / 6.0), 0.0, 1.0));
+}
+#endif
+
 void main() {
     MaterialData m = materials[draw.material];
     Surface s = surface_at(m);
@@ -163,6 +204,12 @@ void main() {
     }
     vec3 irradiance = vec3(0.0), prefiltered = vec3(0.0);
 #ifdef USE_IBL
+    for (uint i = 0u; i < frame.counts.y; ++i) {
+        vec3 disk_diffuse, disk_specular;
+        disk_light(s, v, NdotV, lights[frame.counts.x + i], lut, disk_diffuse, disk_specular);
+        diffuse += disk_diffuse * frame.ibl.x * s.occlusion;
+        specular += disk_specular * frame.ibl.x * s.occlusion;
+    }
     {
         float intensity = frame.ibl.x;
         // The split sum's directional albedo E = F0 A + B (Karis 2013).

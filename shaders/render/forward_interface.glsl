@@ -8,14 +8,14 @@ layout(binding = 0, std140) uniform Frame {
     mat4 view_projection;
     vec4 camera_position;  // xyz
     vec4 ibl;              // x: intensity, y: highest specular level (roughness 1)
-    uvec4 counts;          // x: punctual lights
+    uvec4 counts;          // x: punctual lights, y: disk lights extracted from the environment (after them)
 } frame;
 
 struct Light {
     vec4 position_range;    // xyz position, w range (0 = infinite)
-    vec4 direction_type;    // xyz direction the light travels, w: 0 directional, 1 point, 2 spot
+    vec4 direction_type;    // xyz direction the light travels, w: 0 directional, 1 point, 2 spot, 3 disk
     vec4 color_intensity;   // rgb colour, a intensity (lux or candela)
-    vec4 cone;              // x: 1 / (cos inner - cos outer), y: -cos outer * x
+    vec4 cone;              // spot: x = 1 / (cos inner - cos outer), y = -cos outer * x; disk: x = cos, y = angle
 };
 layout(binding = 1, std430) readonly buffer Lights { Light lights[]; };
 

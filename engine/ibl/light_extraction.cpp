@@ -1,0 +1,134 @@
+#include "ibl/light_extraction.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace facet {
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+double luminance(const float* t) { return 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2]; }
+
+glm::dvec3 texel_direction(uint32_t x, uint32_t y, uint32_t w, uint32_t h) {
+    const double phi = ((x + 0.5) / w - 0.5) * 2 * pi, lat = (0.5 - (y + 0.5) / h) * pi;
+    return {std::cos(lat) * std::cos(phi), std::sin(lat), std::cos(lat) * std::sin(phi)};
+}
+
+double texel_solid_angle(uint32_t y, uint32_t w, uint32_t h) {
+    const double top = (0.5 - double(y) / h) * pi, bottom = (0.5 - double(y + 1) / h) * pi;
+    return 2 * pi / w * (std::sin(top) - std::sin(bottom));
+}
+
+}  // namespace
+
+LightExtraction extract_lights(std::span<const float> rgba, uint32_t w, uint32_t h,
+                               const LightExtractionSettings& settings) {
+    LightExtraction out;
+    out.residual.assign(rgba.begin(), rgba.end());
+    const size_t n = size_t(w) * h;
+    if (n == 0 || rgba.size() < n * 4) return out;
+    std::vector<double> lum(n);
+    double total_power = 0, peak = 0;
+    for (size_t i = 0; i < n; ++i) {
+        lum[i] = std::max(0.0, luminance(&rgba[i * 4]));
+        total_power += lum[i] * texel_solid_angle(uint32_t(i / w), w, h);
+        peak = std::max(peak, lum[i]);
+    }
+    std::vector<double> sorted = lum;
+    std::nth_element(sorted.begin(), sorted.begin() + long(n / 2), sorted.end());
+    const double median = sorted[n / 2];
+    const double threshold = std::max(settings.min_ratio_to_median * median, settings.min_ratio_to_peak * peak);
+    if (peak <= 0 || total_power <= 0) return out;
+
+    // Connected regions above the threshold (8-neighbours, u wraps around).
+    std::vector<int32_t> label(n, -1);
+    struct Region {
+        std::vector<uint32_t> texels;
+        double power = 0, solid_angle = 0;
+    };
+    std::vector<Region> regions;
+    for (size_t start = 0; start < n; ++start) {
+        if (label[start] >= 0 || lum[start] <= threshold) continue;
+        Region r;
+        std::vector<uint32_t> stack{uint32_t(start)};
+        label[start] = int32_t(regions.size());
+        while (!stack.empty()) {
+            const uint32_t i = stack.back();
+            stack.pop_back();
+            r.texels.push_back(i);
+            const uint32_t x = i % w, y = i / w;
+            const double omega = texel_solid_angle(y, w, h);
+            r.power += lum[i] * omega;
+            r.solid_angle += omega;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int yy = int(y) + dy;
+                    if (yy < 0 || yy >= int(h)) continue;
+                    const uint32_t xx = uint32_t((int(x) + dx + int(w)) % int(w));
+                    const size_t j = size_t(yy) * w + xx;
+                    if (label[j] < 0 && lum[j] > threshold) {
+                        label[j] = int32_t(regions.size());
+                        stack.push_back(uint32_t(j));
+                    }
+                }
+        }
+        regions.push_back(std::move(r));
+    }
+    std::vector<size_t> order(regions.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return regions[a].power > regions[b].power; });
+
+    for (size_t k : order) {
+        const Region& r = regions[k];
+        const double fraction = r.power / total_power;
+        if (fraction < settings.min_power_fraction) break;  // sorted: the rest are smaller
+        if (r.solid_angle > settings.max_solid_angle) {
+            out.notes.push_back("a bright region of " + std::to_string(r.solid_angle) +
+                                " sr is too wide to be a light; it stays in the map");
+            continue;
+        }
+        if (out.lights.size() >= settings.max_lights) {
+            out.notes.push_back("more than " + std::to_string(settings.max_lights) + " lights; the rest stay in the map");
+            break;
+        }
+        // The fill: the mean of the texels just outside the region (the surrounding sky).
+        glm::dvec3 fill(0.0);
+        double ring_weight = 0;
+        for (uint32_t i : r.texels) {
+            const uint32_t x = i % w, y = i / w;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int yy = int(y) + dy;
+                    if (yy < 0 || yy >= int(h)) continue;
+                    const size_t j = size_t(yy) * w + uint32_t((int(x) + dx + int(w)) % int(w));
+                    if (label[j] == int32_t(k)) continue;
+                    fill += glm::dvec3(rgba[j * 4], rgba[j * 4 + 1], rgba[j * 4 + 2]);
+                    ring_weight += 1;
+                }
+        }
+        if (ring_weight > 0) fill /= ring_weight;
+        // Power above the fill, its direction (power-weighted) and solid angle.
+        glm::dvec3 power(0.0), centroid(0.0);
+        for (uint32_t i : r.texels) {
+            const double omega = texel_solid_angle(i / w, w, h);
+            const glm::dvec3 excess = glm::max(glm::dvec3(rgba[i * 4], rgba[i * 4 + 1], rgba[i * 4 + 2]) - fill, 0.0);
+            power += excess * omega;
+            centroid += (0.2126 * excess.x + 0.7152 * excess.y + 0.0722 * excess.z) * omega *
+                        texel_direction(i % w, i / w, w, h);
+            for (int c = 0; c < 3; ++c) out.residual[i * 4 + size_t(c)] = float(fill[c]);
+        }
+        DiskLight light;
+        light.direction = glm::vec3(glm::normalize(centroid));
+        light.solid_angle = float(r.solid_angle);
+        light.angular_radius = float(std::acos(std::clamp(1.0 - r.solid_angle / (2 * pi), -1.0, 1.0)));
+        light.radiance = glm::vec3(power / r.solid_angle);
+        light.texels = uint32_t(r.texels.size());
+        light.power_fraction = fraction;
+        out.extracted_power_fraction += fraction;
+        out.lights.push_back(light);
+    }
+    return out;
+}
+
+}  // namespace facet
