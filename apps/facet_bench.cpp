@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "bench_render.h"
+#include "bench_sweep.h"
 #include "cli.h"
 #include "io/atomic_file.h"
 
@@ -58,25 +59,30 @@ bool parse_bake_json(const std::string& text, Run& run) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    facet::cli::Parser parser(program, "bake [ENV...] [options] | render [options]",
+    facet::cli::Parser parser(program, "bake [ENV...] [options] | render [options] | sweep [ENV...] [options]",
                               "bake: benchmarks facet-bake with its default settings: every ENV (default:\n"
                               "builtin:sky) is baked --runs times; medians of per-pass GPU time\n"
                               "(timestamp queries) and wall time are printed. Extra facet-bake options\n"
                               "can be passed with --bake-args.\n"
                               "render: renders --frames frames of a model (IBL baked once) and prints the\n"
-                              "median GPU time of every pass and of the frame, and the wall time per frame.");
+                              "median GPU time of every pass and of the frame, and the wall time per frame.\n"
+                              "sweep: every IBL method and parameter and the final image against the\n"
+                              "reference mode, on each ENV (default builtin:sky): time and error against\n"
+                              "brute-force truth, to sweep.csv/json; scripts/chart.py draws the charts.");
     parser.option("--runs", "N", "bakes per environment (default 5)")
         .option("--bake", "PATH", "the facet-bake program (default: next to facet-bench)")
         .option("--bake-args", "ARGS", "more arguments for facet-bake, e.g. \"--specular filtered\"")
         .option("--csv", "FILE", "also write the medians as CSV");
     facet::add_render_bench_options(parser);
+    facet::add_sweep_options(parser);
     facet::cli::Parsed a;
     int runs = 5;
     try {
         a = parser.parse(argc, argv);
         if (parser.answered_help_or_version(a, FACET_VERSION)) return 0;
-        if (a.positional.empty() || (a.positional[0] != "bake" && a.positional[0] != "render"))
-            throw std::invalid_argument("the first argument must be the benchmark: bake or render");
+        if (a.positional.empty() ||
+            (a.positional[0] != "bake" && a.positional[0] != "render" && a.positional[0] != "sweep"))
+            throw std::invalid_argument("the first argument must be the benchmark: bake, render or sweep");
         if (a.positional[0] == "render" && a.positional.size() > 1)
             throw std::invalid_argument("render takes no positional arguments (use --model and --env)");
         if (a.has("--runs")) runs = facet::cli::parse_int(a.get("--runs"), "--runs", 1, 1000);
@@ -85,6 +91,7 @@ int main(int argc, char** argv) {
         return 2;
     }
     if (a.positional[0] == "render") return facet::run_render_bench(a);
+    if (a.positional[0] == "sweep") return facet::run_sweep(a);
     std::vector<std::string> envs(a.positional.begin() + 1, a.positional.end());
     if (envs.empty()) envs = {"builtin:sky"};
     const std::string bake =

@@ -13,7 +13,8 @@ FACET_PACKAGES=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   glslang-dev glslang-tools libglfw3-dev libglm-dev libtinygltf-dev libopenimageio-dev libimgui-dev
 )
-FACET_TEST_PACKAGES=(libgtest-dev libgmock-dev libbenchmark-dev xvfb)
+# python3-matplotlib: facet-bench sweep's charts (scripts/chart.py), drawn in a test.
+FACET_TEST_PACKAGES=(libgtest-dev libgmock-dev libbenchmark-dev xvfb python3-matplotlib)
 
 # Installs the packages that are missing; apt-get update runs only when needed.
 install_packages() {

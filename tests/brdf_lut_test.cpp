@@ -11,51 +11,12 @@
 #include "ibl/brdf_lut.h"
 #include "shader/program_cache.h"
 #include "support/gpu_test.h"
+#include "support/ibl_reference.h"
 
 namespace facet {
 namespace {
 
 constexpr double pi = 3.14159265358979323846;
-
-struct Ab {
-    double a, b;
-};
-
-// In half-vector space, dl = 4 (v.h) dh, so with f = D G F / (4 n.l n.v):
-//   A = integral D(h) G(v,l) (1 - Fc) (v.h) / (n.v) dh over n.l > 0, B likewise with Fc.
-// The (theta_h, phi) plane is mapped by u = GGX's CDF in theta_h so the grid follows the
-// lobe, and u = 1 - s^2 so the weight's (1 - u)^(-1/2) growth at the horizon is removed.
-Ab reference(double n_v, double roughness, bool height_correlated) {
-    const double alpha = std::max(roughness * roughness, 1e-4), a2 = alpha * alpha;
-    const double k = roughness * roughness / 2;
-    const double vx = std::sqrt(1 - n_v * n_v), vz = n_v;
-    const int nu = 1024, nphi = 256;
-    double a = 0, b = 0;
-    for (int i = 0; i < nu; ++i) {
-        const double s = (i + 0.5) / nu, u = 1 - s * s, jacobian = 2 * s;
-        const double cos_t = std::sqrt((1 - u) / (1 + (a2 - 1) * u)), sin_t = std::sqrt(1 - cos_t * cos_t);
-        for (int j = 0; j < nphi; ++j) {
-            const double phi = 2 * pi * (j + 0.5) / nphi;
-            const double hx = sin_t * std::cos(phi), hz = cos_t;
-            const double v_h = vx * hx + vz * hz;
-            const double l_z = 2 * v_h * hz - vz;
-            if (l_z <= 0 || v_h <= 0) continue;
-            double g_vis;  // G (v.h) / ((n.h) (n.v)), the weight per sample of density D (n.h)
-            if (height_correlated) {
-                const double vis = 0.5 / (l_z * std::sqrt(n_v * n_v * (1 - a2) + a2) +
-                                          n_v * std::sqrt(l_z * l_z * (1 - a2) + a2));
-                g_vis = 4 * vis * l_z * v_h / hz;
-            } else {
-                const double g = (n_v / (n_v * (1 - k) + k)) * (l_z / (l_z * (1 - k) + k));
-                g_vis = g * v_h / (hz * n_v);
-            }
-            const double fc = std::pow(1 - v_h, 5);
-            a += (1 - fc) * g_vis * jacobian;
-            b += fc * g_vis * jacobian;
-        }
-    }
-    return {a / (nu * nphi), b / (nu * nphi)};
-}
 
 class BrdfLutTest : public test::GpuTest {
 protected:
@@ -91,7 +52,7 @@ protected:
         picks.push_back(n - 1);
         for (uint32_t y : picks)
             for (uint32_t x : picks) {
-                const Ab ref = reference((x + 0.5) / n, (y + 0.5) / n,
+                const test::Ab ref = test::brdf_lut_reference((x + 0.5) / n, (y + 0.5) / n,
                                          settings.visibility == LutVisibility::height_correlated);
                 const float* texel = &t[(size_t(y) * n + x) * 4];
                 const double err = std::max(std::abs(texel[0] - ref.a), std::abs(texel[1] - ref.b));

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -45,6 +46,37 @@ TEST(FacetBench, RenderReportsMedianFrameAndPasses) {
     auto [bad, bad_out] = run("render --model builtin:nothing");
     EXPECT_EQ(bad, 1);
     EXPECT_NE(bad_out.find("builtin:nothing"), std::string::npos) << bad_out;
+}
+
+// The sweep on a tiny input: rows for every irradiance setting and LUT setting, errors
+// against the truth (the white furnace: every method is exact up to its sampling), and
+// the charts and report drawn from it by scripts/chart.py with Debian's matplotlib.
+TEST(FacetBench, SweepWritesRowsChartsAndReport) {
+    const auto dir = std::filesystem::temp_directory_path() / ("facet_sweep_test_" + std::to_string(::getpid()));
+    auto [status, out] = run("sweep builtin:white --env-width 32 --stages irradiance,lut --runs 1 --out " + dir.string());
+    ASSERT_EQ(status, 0) << out;
+    std::ifstream in(dir / "sweep.json");
+    const std::string json((std::istreambuf_iterator<char>(in)), {});
+    for (const char* text : {"\"stage\": \"irradiance\"", "\"method\": \"convolve\"", "\"method\": \"sh9\"",
+                             "\"method\": \"lowmip\"", "\"stage\": \"lut\"", "\"rel_rmse\"", "\"psnr_db\""})
+        EXPECT_NE(json.find(text), std::string::npos) << text;
+    // Under radiance 1 the irradiance is 1 for every method: no failure.
+    EXPECT_EQ(json.find("\"failed\": true"), std::string::npos) << json;
+    const std::string chart = "/usr/bin/python3 " FACET_SOURCE_DIR "/scripts/chart.py " + dir.string() + " 2>&1";
+    FILE* pipe = popen(chart.c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    std::array<char, 4096> buf;
+    std::string chart_out;
+    size_t n;
+    while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) chart_out.append(buf.data(), n);
+    EXPECT_EQ(pclose(pipe), 0) << chart_out;
+    for (const char* file : {"chart_irradiance.svg", "chart_irradiance.png", "chart_lut.png", "report.md"})
+        EXPECT_GT(std::filesystem::file_size(dir / file), 1000u) << file;
+    std::ifstream report_in(dir / "report.md");
+    const std::string report((std::istreambuf_iterator<char>(report_in)), {});
+    EXPECT_NE(report.find("**convolve**"), std::string::npos) << report;
+    EXPECT_NE(report.find("Pareto front"), std::string::npos) << report;
+    std::filesystem::remove_all(dir);
 }
 
 TEST(FacetBench, BadUseIsAClearError) {

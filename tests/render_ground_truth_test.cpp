@@ -184,7 +184,8 @@ TEST(RenderGroundTruth, LightExtractionCutsTheSplitSumErrorUnderASun) {
     // Synthetic: a sun of 2e4 radiance 2 degrees across over a sky of about 1.
     const Case cases[] = {{"sun sky", test::sun_sky(256, 128, 2e4, 2.0, 35.0, 60.0)},
                           {"royal_esplanade", shared_environment("royal_esplanade_1k.hdr", 4)},
-                          {"venice_sunset", shared_environment("venice_sunset_1k.hdr", 4)}};
+                          {"venice_sunset", shared_environment("venice_sunset_1k.hdr", 4)},
+                          {"studio", shared_environment("studio_small_03_1k.hdr", 4)}};
     std::printf("environment      roughness  dielectric before/after   metal before/after\n");
     for (const Case& c : cases) {
         EnvironmentFile file(c.env, c.name[0] == 's' ? "sunsky" : c.name);

@@ -20,40 +20,6 @@ using namespace test;
 
 constexpr double pi = 3.14159265358979323846;
 
-// Direction, solid angle and radiance of every texel, computed once per environment.
-struct TexelTable {
-    std::vector<Vec3> direction;
-    std::vector<double> solid_angle;
-    std::vector<Vec3> radiance;
-    explicit TexelTable(const Equirect& e) {
-        for (uint32_t y = 0; y < e.h; ++y)
-            for (uint32_t x = 0; x < e.w; ++x) {
-                direction.push_back(equirect_direction((x + 0.5) / e.w, (y + 0.5) / e.h));
-                solid_angle.push_back(equirect_texel_solid_angle(y, e.w, e.h));
-                const float* L = e.at(x, y);
-                radiance.push_back({L[0], L[1], L[2]});
-            }
-    }
-};
-
-// P(R) = sum L w dw / sum w dw, w = D(h) (n.l), h = normalize(n + l), over every texel.
-Vec3 prefiltered(const TexelTable& t, const Vec3& n, double roughness) {
-    const double alpha = std::max(roughness * roughness, 1e-4), a2 = alpha * alpha;
-    Vec3 sum{0, 0, 0};
-    double weight = 0;
-    for (size_t i = 0; i < t.direction.size(); ++i) {
-        const Vec3& l = t.direction[i];
-        const double n_l = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
-        if (n_l <= 0) continue;
-        // n.h for h = normalize(n + l) is sqrt((1 + n.l) / 2), so (n.h)^2 = (1 + n.l) / 2.
-        const double t2 = 0.5 * (1 + n_l) * (a2 - 1) + 1;
-        const double w = a2 / (pi * t2 * t2) * n_l * t.solid_angle[i];
-        for (int c = 0; c < 3; ++c) sum[c] += w * t.radiance[i][c];
-        weight += w;
-    }
-    return {sum[0] / weight, sum[1] / weight, sum[2] / weight};
-}
-
 class SpecularTest : public GpuTest {
 protected:
     CubeLevels bake(const Equirect& e, const SpecularSettings& s) {

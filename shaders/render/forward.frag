@@ -156,7 +156,9 @@ void disk_light(Surface s, vec3 v, float NdotV, Light light, vec3 lut, out vec3 
     float angle = acos(clamp(dot(R, c), -1.0, 1.0));
     float coverage = clamp((theta + alpha - angle) / (2.0 * alpha), 0.0, 1.0);
     vec3 mirror = L * s.specular_weight * (s.F0 * lut.x + lut.y) * coverage;
-    specular = mix(mirror, sampled, clamp((alpha - theta / 6.0) / (theta / 6.0), 0.0, 1.0));
+    // 32 directions are about theta / 3 apart: the sum resolves lobes from alpha = theta / 2
+    // on; below theta / 4 the mirror image holds.
+    specular = mix(mirror, sampled, clamp((alpha - theta / 4.0) / (theta / 4.0), 0.0, 1.0));
 }
 #endif
 

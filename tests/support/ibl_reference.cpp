@@ -131,4 +131,68 @@ Vec3 irradiance_over_pi(const Equirect& e, const Vec3& n) {
 double luminance(const Vec3& rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
 double luminance(const float* rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
 
+TexelTable::TexelTable(const Equirect& e) {
+        for (uint32_t y = 0; y < e.h; ++y)
+            for (uint32_t x = 0; x < e.w; ++x) {
+                direction.push_back(equirect_direction((x + 0.5) / e.w, (y + 0.5) / e.h));
+                solid_angle.push_back(equirect_texel_solid_angle(y, e.w, e.h));
+                const float* L = e.at(x, y);
+                radiance.push_back({L[0], L[1], L[2]});
+            }
+}
+
+Vec3 prefiltered(const TexelTable& t, const Vec3& n, double roughness) {
+    const double alpha = std::max(roughness * roughness, 1e-4), a2 = alpha * alpha;
+    Vec3 sum{0, 0, 0};
+    double weight = 0;
+    for (size_t i = 0; i < t.direction.size(); ++i) {
+        const Vec3& l = t.direction[i];
+        const double n_l = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
+        if (n_l <= 0) continue;
+        // n.h for h = normalize(n + l) is sqrt((1 + n.l) / 2), so (n.h)^2 = (1 + n.l) / 2.
+        const double t2 = 0.5 * (1 + n_l) * (a2 - 1) + 1;
+        const double w = a2 / (pi * t2 * t2) * n_l * t.solid_angle[i];
+        for (int c = 0; c < 3; ++c) sum[c] += w * t.radiance[i][c];
+        weight += w;
+    }
+    return {sum[0] / weight, sum[1] / weight, sum[2] / weight};
+}
+
+
+// In half-vector space, dl = 4 (v.h) dh, so with f = D G F / (4 n.l n.v):
+//   A = integral D(h) G(v,l) (1 - Fc) (v.h) / (n.v) dh over n.l > 0, B likewise with Fc.
+// The (theta_h, phi) plane is mapped by u = GGX's CDF in theta_h so the grid follows the
+// lobe, and u = 1 - s^2 so the weight's (1 - u)^(-1/2) growth at the horizon is removed.
+Ab brdf_lut_reference(double n_v, double roughness, bool height_correlated) {
+    const double alpha = std::max(roughness * roughness, 1e-4), a2 = alpha * alpha;
+    const double k = roughness * roughness / 2;
+    const double vx = std::sqrt(1 - n_v * n_v), vz = n_v;
+    const int nu = 1024, nphi = 256;
+    double a = 0, b = 0;
+    for (int i = 0; i < nu; ++i) {
+        const double s = (i + 0.5) / nu, u = 1 - s * s, jacobian = 2 * s;
+        const double cos_t = std::sqrt((1 - u) / (1 + (a2 - 1) * u)), sin_t = std::sqrt(1 - cos_t * cos_t);
+        for (int j = 0; j < nphi; ++j) {
+            const double phi = 2 * pi * (j + 0.5) / nphi;
+            const double hx = sin_t * std::cos(phi), hz = cos_t;
+            const double v_h = vx * hx + vz * hz;
+            const double l_z = 2 * v_h * hz - vz;
+            if (l_z <= 0 || v_h <= 0) continue;
+            double g_vis;  // G (v.h) / ((n.h) (n.v)), the weight per sample of density D (n.h)
+            if (height_correlated) {
+                const double vis = 0.5 / (l_z * std::sqrt(n_v * n_v * (1 - a2) + a2) +
+                                          n_v * std::sqrt(l_z * l_z * (1 - a2) + a2));
+                g_vis = 4 * vis * l_z * v_h / hz;
+            } else {
+                const double g = (n_v / (n_v * (1 - k) + k)) * (l_z / (l_z * (1 - k) + k));
+                g_vis = g * v_h / (hz * n_v);
+            }
+            const double fc = std::pow(1 - v_h, 5);
+            a += (1 - fc) * g_vis * jacobian;
+            b += fc * g_vis * jacobian;
+        }
+    }
+    return {a / (nu * nphi), b / (nu * nphi)};
+}
+
 }  // namespace facet::test

@@ -40,6 +40,25 @@ Equirect downsample(const Equirect& e, uint32_t factor);
 // E(n) / pi = 1/pi * sum over texels of L max(0, n . w) dw: the brute-force truth.
 Vec3 irradiance_over_pi(const Equirect& e, const Vec3& n);
 
+// Direction, solid angle and radiance of every texel, computed once per environment.
+struct TexelTable {
+    std::vector<Vec3> direction;
+    std::vector<double> solid_angle;
+    std::vector<Vec3> radiance;
+    explicit TexelTable(const Equirect& e);
+};
+
+// The GGX-prefiltered environment of the split sum (n = v = R):
+// P(R) = sum L w dw / sum w dw, w = D(h) (n.l), h = normalize(n + l), over every texel.
+Vec3 prefiltered(const TexelTable& t, const Vec3& n, double roughness);
+
+// The split-sum LUT's scale A and bias B at (n.v, roughness) by quadrature over the
+// half-vector hemisphere; Schlick-GGX with k = r^2/2, or the height-correlated term.
+struct Ab {
+    double a, b;
+};
+Ab brdf_lut_reference(double n_v, double roughness, bool height_correlated);
+
 double luminance(const Vec3& rgb);
 double luminance(const float* rgb);
 

@@ -1,0 +1,436 @@
+#include "bench_sweep.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <functional>
+#include <sstream>
+
+#include "gpu/context.h"
+#include "gpu/transfer.h"
+#include "graph/compiled_graph.h"
+#include "graph/graph_run.h"
+#include "ibl/ibl_bake.h"
+#include "io/atomic_file.h"
+#include "io/image_io.h"
+#include "io/json_writer.h"
+#include "render_job.h"
+#include "shader/program_cache.h"
+#include "support/ibl_reference.h"
+
+namespace facet {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Row {
+    std::string env, stage, method, params;
+    double gpu_ms = 0, rel_rmse = 0, max_rel = 0, psnr = 0;
+    bool failed = false;
+    std::string failure;
+};
+
+struct ErrorStats {
+    double err2 = 0, ref2 = 0, max_rel = 0, peak = 0, count = 0;
+    bool bad = false;  // NaN, Inf or negative
+    void add(const test::Vec3& want, const float* got, double mean_floor) {
+        for (int c = 0; c < 3; ++c) {
+            if (!std::isfinite(got[c]) || got[c] < 0) bad = true;
+            const double d = double(got[c]) - want[size_t(c)];
+            err2 += d * d;
+            ref2 += want[size_t(c)] * want[size_t(c)];
+            peak = std::max(peak, want[size_t(c)]);
+            count += 1;
+            if (want[size_t(c)] > mean_floor) max_rel = std::max(max_rel, std::abs(d) / want[size_t(c)]);
+        }
+    }
+    void finish(Row& row, double bound) const {
+        row.rel_rmse = ref2 > 0 ? std::sqrt(err2 / ref2) : 0;
+        row.max_rel = max_rel;
+        const double rmse = std::sqrt(err2 / std::max(count, 1.0));
+        row.psnr = rmse > 0 ? 20 * std::log10(peak / rmse) : 200;
+        if (bad) row.failed = true, row.failure = "NaN, Inf or negative values";
+        else if (!std::isfinite(row.rel_rmse) || row.rel_rmse > bound)
+            row.failed = true, row.failure = "error above the bound of " + std::to_string(int(std::lround(bound * 100))) + "%";
+    }
+};
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0 : v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+// Passes every bake shares (input, cube, its mips) do not count towards a method's time.
+bool shared_pass(const std::string& name) {
+    return name == "upload environment" || name == "procedural sky" || name == "equirect to cube" ||
+           name.rfind("cube mip", 0) == 0;
+}
+
+struct Baked {
+    std::vector<std::vector<float>> faces;  // [level * 6 + face] RGBA texels
+    uint32_t size = 0, levels = 0;
+    double gpu_ms = 0;
+};
+
+class Sweep {
+public:
+    Sweep(Context& context, int runs) : context_(context), programs_(context, compiler_), runs_(runs) {}
+
+    // Bakes `what` ("irradiance", "specular" or "lut") with `settings`, `runs` times.
+    Result<Baked> bake(const EnvironmentSource& env, IblSettings settings, const std::string& what) {
+        settings.want_irradiance = what == "irradiance";
+        settings.want_specular = what == "specular";
+        settings.want_lut = what == "lut";
+        settings = resolved_ibl_settings(settings, env);
+        Baked out;
+        std::vector<double> times;
+        for (int r = 0; r < runs_; ++r) {
+            IblBake ibl(context_, programs_);
+            RenderGraph graph;
+            auto images = ibl.add_passes(graph, env, settings);
+            if (!images) return images.error();
+            const ImageHandle result = what == "irradiance" ? images->irradiance : what == "specular" ? images->specular
+                                                                                                     : images->lut;
+            graph.export_image(result, {VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                                        VK_ACCESS_2_TRANSFER_READ_BIT});
+            CompiledGraph compiled = graph.compile();
+            GraphRun run(context_, compiled);
+            // Pass by pass, each submission waited for: wall time per pass. Lavapipe's
+            // timestamps undercount compute passes, so they cannot rank methods.
+            double ms = 0;
+            auto last = std::chrono::steady_clock::now();
+            run.submit_and_wait([&](uint32_t, uint32_t, const std::string& pass) {
+                const auto now = std::chrono::steady_clock::now();
+                if (!shared_pass(pass)) ms += std::chrono::duration<double, std::milli>(now - last).count();
+                last = now;
+            });
+            times.push_back(ms);
+            if (r + 1 < runs_) continue;
+            const Image& image = *run.transient_image(result);
+            out.size = image.desc().width;
+            out.levels = image.desc().mip_levels;
+            for (uint32_t m = 0; m < out.levels; ++m)
+                for (uint32_t f = 0; f < image.desc().array_layers; ++f) {
+                    auto bytes = read_image(context_, image, m, f, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+                    std::vector<float> v(bytes.size() / 4);
+                    std::memcpy(v.data(), bytes.data(), v.size() * 4);
+                    out.faces.push_back(std::move(v));
+                }
+        }
+        out.gpu_ms = median(times);
+        return out;
+    }
+
+    Context& context() { return context_; }
+    ProgramCache& programs() { return programs_; }
+
+private:
+    Context& context_;
+    ShaderCompiler compiler_;
+    ProgramCache programs_;
+    int runs_;
+};
+
+// A cube level compared with `truth(direction)` at 4 x 4 texels per face; any NaN, Inf or
+// negative texel anywhere counts as a failure.
+void compare_cube(const Baked& b, uint32_t level, const std::function<test::Vec3(const test::Vec3&)>& truth,
+                  ErrorStats& stats) {
+    const uint32_t n = std::max(1u, b.size >> level);
+    std::vector<std::pair<test::Vec3, const float*>> points;
+    double mean = 0;
+    for (uint32_t f = 0; f < 6; ++f) {
+        const std::vector<float>& face = b.faces[level * 6 + f];
+        for (float v : face)
+            if (!std::isfinite(v) || v < 0) stats.bad = true;
+        for (uint32_t j = 0; j < std::min(n, 4u); ++j)
+            for (uint32_t i = 0; i < std::min(n, 4u); ++i) {
+                const uint32_t x = (2 * i + 1) * n / (2 * std::min(n, 4u)), y = (2 * j + 1) * n / (2 * std::min(n, 4u));
+                const test::Vec3 d = test::cube_texel_direction(f, x, y, n);
+                points.push_back({truth(d), &face[(size_t(y) * n + x) * 4]});
+                mean += test::luminance(points.back().first);
+            }
+    }
+    mean /= double(points.size());
+    for (auto& [want, got] : points) stats.add(want, got, 0.01 * mean);
+}
+
+Result<test::Equirect> texels_of(Context& context, ProgramCache& programs, EnvironmentSource& env) {
+    if (Status s = materialize_environment(context, programs, env); !s) return s.error();
+    return test::Equirect{env.width, env.height, env.image.rgba};
+}
+
+// Box-downsamples a file environment to `width` (power-of-two factors), so that the sweep
+// and its truth stay fast; the truth uses the same texels.
+void downsample_to(EnvironmentSource& env, uint32_t width) {
+    if (env.sky || env.width <= width) return;
+    test::Equirect e{env.width, env.height, env.image.rgba};
+    const uint32_t factor = env.width / width;
+    if (factor < 2) return;
+    e = test::downsample(e, factor);
+    env.image.rgba = e.rgba;
+    env.width = env.image.width = e.w;
+    env.height = env.image.height = e.h;
+}
+
+std::string csv_of(const std::vector<Row>& rows) {
+    std::string csv = "environment,stage,method,parameters,gpu_ms,rel_rmse,max_rel,psnr_db,failed,failure\n";
+    for (const Row& r : rows) {
+        std::ostringstream line;
+        line << '"' << r.env << "\"," << r.stage << ',' << r.method << ",\"" << r.params << "\"," << r.gpu_ms << ','
+             << r.rel_rmse << ',' << r.max_rel << ',' << r.psnr << ',' << (r.failed ? 1 : 0) << ",\"" << r.failure
+             << "\"\n";
+        csv += line.str();
+    }
+    return csv;
+}
+
+std::string json_of(const std::vector<Row>& rows, const std::string& device, uint32_t width, int runs) {
+    JsonWriter j;
+    j.begin_object().value("program", "facet-bench sweep").value("version", FACET_VERSION).value("device", device);
+    j.value("environment_width", width).value("runs", runs);
+    j.value("time", "wall time of each setting's passes, each pass its own submission (median of the runs)");
+    j.begin_array("rows");
+    for (const Row& r : rows) {
+        j.begin_object().value("environment", r.env).value("stage", r.stage).value("method", r.method);
+        j.value("parameters", r.params).value("gpu_ms", r.gpu_ms).value("rel_rmse", r.rel_rmse);
+        j.value("max_rel", r.max_rel).value("psnr_db", r.psnr).value("failed", r.failed).value("failure", r.failure);
+        j.end_object();
+    }
+    j.end_array().end_object();
+    return j.str();
+}
+
+}  // namespace
+
+void add_sweep_options(cli::Parser& parser) {
+    parser.option("--out", "DIR", "sweep: where sweep.csv and sweep.json go (default bench-out)")
+        .option("--env-width", "N", "sweep: environments are downsampled to this width (default 256)")
+        .option("--stages", "LIST", "sweep: irradiance,specular,lut,image (default all)");
+}
+
+int run_sweep(const cli::Parsed& a) {
+    std::vector<std::string> envs(a.positional.begin() + 1, a.positional.end());
+    uint32_t width = 256;
+    int runs = 3;
+    std::string stages = a.get("--stages", "irradiance,specular,lut,image");
+    const std::string out_dir = a.get("--out", "bench-out");
+    try {
+        if (a.has("--env-width")) width = uint32_t(cli::parse_int(a.get("--env-width"), "--env-width", 8, 4096));
+        if (a.has("--runs")) runs = cli::parse_int(a.get("--runs"), "--runs", 1, 100);
+    } catch (const std::invalid_argument& e) {
+        std::fprintf(stderr, "facet-bench: error: %s\n", e.what());
+        return 2;
+    }
+    if (envs.empty()) envs = {"builtin:sky"};
+    auto created = Context::create({});
+    if (!created) {
+        std::fprintf(stderr, "facet-bench: error: cannot start Vulkan: %s\n", created.error().message.c_str());
+        return 1;
+    }
+    Context& context = *created.value();
+    Sweep sweep(context, runs);
+    std::vector<Row> rows;
+    auto fail = [](const std::string& message) {
+        std::fprintf(stderr, "facet-bench: error: %s\n", message.c_str());
+        return 1;
+    };
+    auto has_stage = [&](const char* s) { return stages.find(s) != std::string::npos; };
+    for (const std::string& name : envs) {
+        auto resolved = resolve_environment(name, width);
+        if (!resolved) return fail(resolved.error().message);
+        EnvironmentSource env = std::move(resolved).value();
+        auto texels = texels_of(context, sweep.programs(), env);
+        if (!texels) return fail(texels.error().message);
+        downsample_to(env, width);
+        const test::Equirect e{env.width, env.height, env.image.rgba};
+        const std::string label = fs::path(name).stem().string();
+        std::fprintf(stderr, "facet-bench: sweep %s (%ux%u)\n", label.c_str(), e.w, e.h);
+        auto record = [&](Row row, const ErrorStats& stats, double bound) {
+            row.env = label;
+            stats.finish(row, bound);
+            std::fprintf(stderr, "facet-bench:   %-10s %-10s %-22s %8.2f ms  relRMSE %.4f%s\n", row.stage.c_str(),
+                         row.method.c_str(), row.params.c_str(), row.gpu_ms, row.rel_rmse,
+                         row.failed ? ("  FAILED: " + row.failure).c_str() : "");
+            rows.push_back(row);
+        };
+
+        if (has_stage("irradiance")) {
+            struct Config {
+                const char* method;
+                std::string params;
+                std::function<void(IrradianceSettings&)> set;
+            };
+            std::vector<Config> configs;
+            for (uint32_t src : {4u, 8u, 16u, 32u})
+                configs.push_back({"convolve", "source " + std::to_string(src),
+                                   [src](IrradianceSettings& s) { s.method = IrradianceMethod::convolve; s.source_size = src; }});
+            for (float step : {0.1f, 0.05f, 0.025f})
+                configs.push_back({"riemann", "step " + std::to_string(step).substr(0, 5),
+                                   [step](IrradianceSettings& s) { s.method = IrradianceMethod::riemann; s.riemann_step = step; }});
+            configs.push_back({"sh9", "windowed", [](IrradianceSettings& s) { s.method = IrradianceMethod::sh9; }});
+            configs.push_back({"sh9-raw", "no window", [](IrradianceSettings& s) {
+                                   s.method = IrradianceMethod::sh9;
+                                   s.sh9_windowing = false;
+                               }});
+            for (float sigma : {0.25f, 0.5f})
+                configs.push_back({"blur", "sigma " + std::to_string(sigma).substr(0, 4),
+                                   [sigma](IrradianceSettings& s) { s.method = IrradianceMethod::blur; s.blur_sigma = sigma; }});
+            for (uint32_t size : {1u, 2u, 4u})
+                configs.push_back({"lowmip", "face " + std::to_string(size),
+                                   [size](IrradianceSettings& s) { s.method = IrradianceMethod::lowmip; s.lowmip_size = size; }});
+            for (const Config& c : configs) {
+                IblSettings settings;
+                c.set(settings.irradiance);
+                auto baked = sweep.bake(env, settings, "irradiance");
+                if (!baked) return fail(label + ": irradiance " + c.method + ": " + baked.error().message);
+                ErrorStats stats;
+                compare_cube(*baked, 0, [&](const test::Vec3& n) { return test::irradiance_over_pi(e, n); }, stats);
+                record({"", "irradiance", c.method, c.params, baked->gpu_ms}, stats, 0.05);
+            }
+        }
+        if (has_stage("specular")) {
+            struct Config {
+                const char* method;
+                std::string params;
+                SpecularSettings settings;
+            };
+            std::vector<Config> configs;
+            for (uint32_t n : {64u, 256u, 1024u, 4096u}) {
+                SpecularSettings s;
+                s.sample_count = n;
+                s.method = SpecularMethod::importance;
+                configs.push_back({"importance", std::to_string(n) + " samples", s});
+                s.method = SpecularMethod::filtered;
+                configs.push_back({"filtered", std::to_string(n) + " samples", s});
+            }
+            SpecularSettings s;
+            s.method = SpecularMethod::convolve;
+            configs.push_back({"convolve", "texel blocks", s});
+            s.method = SpecularMethod::mips;
+            configs.push_back({"mips", "environment mips", s});
+            for (uint32_t n : {256u, 1024u}) {
+                s.method = SpecularMethod::automatic;
+                s.sample_count = n;
+                configs.push_back({"automatic", std::to_string(n) + " samples", s});
+            }
+            const test::TexelTable table(e);
+            for (const Config& c : configs) {
+                IblSettings settings;
+                settings.specular = c.settings;
+                auto baked = sweep.bake(env, settings, "specular");
+                if (!baked) return fail(label + ": specular " + c.method + ": " + baked.error().message);
+                ErrorStats stats;
+                for (uint32_t m = 1; m < baked->levels; ++m) {
+                    const double roughness = double(m) / (baked->levels - 1);
+                    compare_cube(*baked, m, [&](const test::Vec3& n) { return test::prefiltered(table, n, roughness); },
+                                 stats);
+                }
+                record({"", "specular", c.method, c.params, baked->gpu_ms}, stats, 0.1);
+            }
+        }
+        if (has_stage("lut") && name == envs.front()) {
+            // The LUT does not depend on the environment: once, under the first one.
+            for (uint32_t size : {32u, 64u, 128u})
+                for (uint32_t samples : {128u, 512u, 2048u}) {
+                    IblSettings settings;
+                    settings.lut.size = size;
+                    settings.lut.sample_count = samples;
+                    auto baked = sweep.bake(env, settings, "lut");
+                    if (!baked) return fail("lut: " + baked.error().message);
+                    ErrorStats stats;
+                    const std::vector<float>& t = baked->faces[0];
+                    for (uint32_t j = 0; j < 8; ++j)
+                        for (uint32_t i = 0; i < 8; ++i) {
+                            const uint32_t x = (2 * i + 1) * size / 16, y = (2 * j + 1) * size / 16;
+                            const test::Ab ab = test::brdf_lut_reference((x + 0.5) / size, (y + 0.5) / size, false);
+                            const float* got = &t[(size_t(y) * size + x) * 4];
+                            const float values[3] = {got[0], got[1], 0.0f};
+                            stats.add({ab.a, ab.b, 0.0}, values, 0.01);
+                        }
+                    Row row{"", "lut", "lut " + std::to_string(size), std::to_string(samples) + " samples", baked->gpu_ms};
+                    row.env = "any";
+                    stats.finish(row, 0.05);
+                    rows.push_back(row);
+                    std::fprintf(stderr, "facet-bench:   lut %3u^2 %5u samples %8.2f ms  relRMSE %.5f\n", size, samples,
+                                 row.gpu_ms, row.rel_rmse);
+                }
+        }
+        if (has_stage("image")) {
+            // The final image of builtin:spheres with each specular setting against the
+            // reference mode (Monte Carlo to 1% noise or 2048 samples per pixel).
+            const std::string env_file = (fs::temp_directory_path() / ("facet_sweep_env_" + label + ".exr")).string();
+            if (Status st = write_hdr_image(env_file, e.w, e.h, e.rgba); !st) return fail(st.error().message);
+            struct Config {
+                const char* method;
+                std::string params;
+                std::function<void(RenderJob&)> set;
+            };
+            const std::vector<Config> configs = {
+                {"split sum", "defaults", [](RenderJob&) {}},
+                {"split sum", "importance 256", [](RenderJob& j) {
+                     j.ibl.specular.method = SpecularMethod::importance;
+                     j.ibl.specular.sample_count = 256;
+                 }},
+                {"split sum", "mips", [](RenderJob& j) { j.ibl.specular.method = SpecularMethod::mips; }},
+                {"dominant", "defaults", [](RenderJob& j) { j.frame.dominant_direction = true; }},
+                {"extraction", "defaults", [](RenderJob& j) { j.extract_lights = true; }},
+                {"extraction+dominant", "defaults", [](RenderJob& j) {
+                     j.extract_lights = true;
+                     j.frame.dominant_direction = true;
+                 }},
+            };
+            RenderJob base;
+            base.model = "builtin:spheres";
+            base.env = env_file;
+            base.frame.width = base.frame.height = 140;
+            base.frame.skybox = false;
+            std::vector<float> reference;
+            for (const Config& c : configs) {
+                RenderJob job = base;
+                c.set(job);
+                auto session = RenderSession::create(context, job);
+                if (!session) return fail(session.error().message);
+                if (reference.empty()) {
+                    ReferenceSettings rs;
+                    rs.max_samples = 2048;
+                    auto ref = (*session)->render_reference(rs);
+                    if (!ref) return fail(ref.error().message);
+                    reference = ref->hdr;
+                }
+                std::vector<double> times;
+                std::vector<float> image;
+                for (int r = 0; r < runs; ++r) {
+                    auto frame = (*session)->render_frame(true);
+                    if (!frame) return fail(frame.error().message);
+                    double ms = 0;
+                    for (const PassTiming& t : frame->pass_wall) ms += t.time_ms;
+                    times.push_back(ms);
+                    image = frame->hdr;
+                }
+                ErrorStats stats;
+                for (size_t i = 0; i + 3 < image.size(); i += 4)
+                    if (reference[i + 3] >= 1.0f && image[i + 3] >= 1.0f)
+                        stats.add({reference[i], reference[i + 1], reference[i + 2]}, &image[i], 0.01);
+                // Frame time: wall time of its passes (lavapipe's compute timestamps undercount).
+                record({"", "image", c.method, c.params, median(times)}, stats, 0.25);
+            }
+            fs::remove(env_file);
+        }
+    }
+    std::error_code ec;
+    fs::create_directories(out_dir, ec);
+    if (Status s = write_text_file((fs::path(out_dir) / "sweep.csv").string(), csv_of(rows)); !s)
+        return fail(s.error().message);
+    if (Status s = write_text_file((fs::path(out_dir) / "sweep.json").string(),
+                                   json_of(rows, context.device_name(), width, runs));
+        !s)
+        return fail(s.error().message);
+    std::printf("wrote %s/sweep.csv and sweep.json (%zu rows); charts: /usr/bin/python3 scripts/chart.py %s\n",
+                out_dir.c_str(), rows.size(), out_dir.c_str());
+    return 0;
+}
+
+}  // namespace facet
