@@ -180,15 +180,18 @@ TEST(RenderGroundTruth, LightExtractionCutsTheSplitSumErrorUnderASun) {
     struct Case {
         const char* name;
         test::Equirect env;
+        int lights;         // expected number of extracted lights (-1: any)
+        bool must_improve;  // rough metals at least 4x better
     };
-    // Synthetic: a sun of 2e4 radiance 2 degrees across over a sky of about 1.
-    const Case cases[] = {{"sun sky", test::sun_sky(256, 128, 2e4, 2.0, 35.0, 60.0)},
-                          {"royal_esplanade", shared_environment("royal_esplanade_1k.hdr", 4)},
-                          {"venice_sunset", shared_environment("venice_sunset_1k.hdr", 4)},
-                          {"studio", shared_environment("studio_small_03_1k.hdr", 4)}};
+    // Synthetic: a sun of 2e4 radiance 2 degrees across over a sky of about 1. Studio: its
+    // softbox (5 degrees, 70% of the power) is too wide to be a disk, so it stays.
+    const Case cases[] = {{"sun sky", test::sun_sky(256, 128, 2e4, 2.0, 35.0, 60.0), 1, true},
+                          {"royal_esplanade", shared_environment("royal_esplanade_1k.hdr", 4), 3, true},
+                          {"venice_sunset", shared_environment("venice_sunset_1k.hdr", 4), 1, false},
+                          {"studio", shared_environment("studio_small_03_1k.hdr", 4), 0, false}};
     std::printf("environment      roughness  dielectric before/after   metal before/after\n");
     for (const Case& c : cases) {
-        EnvironmentFile file(c.env, c.name[0] == 's' ? "sunsky" : c.name);
+        EnvironmentFile file(c.env, c.name[0] == 's' && c.name[1] == 'u' ? "sunsky" : c.name);
         Rendered before = render_spheres(file.path);
         Rendered after = render_spheres(file.path, [](RenderJob& j) { j.extract_lights = true; });
         ASSERT_FALSE(before.images.hdr.empty());
@@ -212,11 +215,11 @@ TEST(RenderGroundTruth, LightExtractionCutsTheSplitSumErrorUnderASun) {
         }
         std::printf("%-16s %zu light(s); rough metals (roughness >= 2/3): %.4f -> %.4f\n", c.name, lights,
                     before_rough / 3, after_rough / 3);
-        if (c.name[0] == 's') EXPECT_EQ(lights, 1u);
+        if (c.lights >= 0) EXPECT_EQ(lights, size_t(c.lights)) << c.name;
         // Where the lights carry much of the power, rough metals improve several times
         // (measured: sun sky 27% -> 0.7%, royal_esplanade 39% -> 6%; venice's sun holds
         // only 2% of its power: 14% -> 12%).
-        if (c.name[0] != 'v') EXPECT_LT(after_rough, 0.25 * before_rough) << c.name << ": rough metals";
+        if (c.must_improve) EXPECT_LT(after_rough, 0.25 * before_rough) << c.name << ": rough metals";
     }
     EXPECT_EQ(context.validation_message_count(), messages);
 }
