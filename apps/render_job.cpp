@@ -193,8 +193,28 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
         requested.specular.min_roughness = needs.min_roughness;
         s->ibl_settings = resolved_ibl_settings(requested, *s->env);
         s->ibl_bake = std::make_unique<IblBake>(context, *s->programs);
+        // With extracted lights, specular levels whose lobe is narrower than twice the
+        // widest light come from the whole environment (their split sum sees the lights
+        // well); the disks take over from the first level that is wider.
+        SpecularSplit split;
+        EnvironmentSource whole;
+        if (!s->frame.environment_lights.empty()) {
+            float widest = 0.0f;
+            for (const DiskLight& d : s->frame.environment_lights) widest = std::max(widest, d.angular_radius);
+            const uint32_t levels = s->ibl_settings.specular.levels;
+            uint32_t level = 1;
+            while (level < levels) {
+                const float roughness = float(level) / float(std::max(levels - 1, 1u));
+                if (roughness * roughness >= widest) break;
+                ++level;
+            }
+            whole = *s->env;
+            whole.image.rgba = s->original_texels;
+            split = {&whole, level};
+            s->frame.environment_light_level = level;
+        }
         RenderGraph graph;
-        auto images = s->ibl_bake->add_passes(graph, *s->env, s->ibl_settings);
+        auto images = s->ibl_bake->add_passes(graph, *s->env, s->ibl_settings, split);
         if (!images) return images.error();
         s->ibl_images = *images;
         for (ImageHandle h : {s->ibl_images.cube, s->ibl_images.irradiance, s->ibl_images.specular, s->ibl_images.lut})

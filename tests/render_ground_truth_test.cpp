@@ -188,7 +188,8 @@ TEST(RenderGroundTruth, LightExtractionCutsTheSplitSumErrorUnderASun) {
     const Case cases[] = {{"sun sky", test::sun_sky(256, 128, 2e4, 2.0, 35.0, 60.0), 1, true},
                           {"royal_esplanade", shared_environment("royal_esplanade_1k.hdr", 4), 3, true},
                           {"venice_sunset", shared_environment("venice_sunset_1k.hdr", 4), 1, false},
-                          {"studio", shared_environment("studio_small_03_1k.hdr", 4), 0, false}};
+                          {"studio", shared_environment("studio_small_03_1k.hdr", 4), 0, false},
+                          {"warehouse", shared_environment("empty_warehouse_01_1k.hdr", 4), -1, false}};
     std::printf("environment      roughness  dielectric before/after   metal before/after\n");
     for (const Case& c : cases) {
         EnvironmentFile file(c.env, c.name[0] == 's' && c.name[1] == 'u' ? "sunsky" : c.name);

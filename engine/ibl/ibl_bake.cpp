@@ -78,34 +78,54 @@ IblBake::IblBake(Context& context, ProgramCache& programs)
 
 IblBake::~IblBake() = default;
 
-Result<IblImages> IblBake::add_passes(RenderGraph& graph, const EnvironmentSource& source, const IblSettings& s) {
-    IblImages out;
+namespace {
+
+// The environment's texels (or its procedural sky) as an image of the graph, and its cube.
+struct Uploaded {
+    ImageHandle equirect, cube;
+};
+
+Result<Uploaded> add_environment(RenderGraph& graph, Context& context, ProgramCache& programs,
+                                 const Sampler& equirect_sampler, const EnvironmentSource& source, uint32_t cube_size,
+                                 std::unique_ptr<Buffer>& staging, const std::string& prefix) {
+    Uploaded out;
     ImageDesc equirect_desc;
     equirect_desc.width = source.width;
     equirect_desc.height = source.height;
-    out.equirect = graph.create_image("environment", equirect_desc);
+    out.equirect = graph.create_image(prefix + "environment", equirect_desc);
     if (source.sky) {
-        auto sky = add_procedural_sky_pass(graph, programs_, *source.sky, out.equirect);
+        auto sky = add_procedural_sky_pass(graph, programs, *source.sky, out.equirect);
         if (!sky) return sky.error();
         out.equirect = *sky;
     } else {
         const std::vector<float>& texels = source.image.rgba;
-        staging_ = std::make_unique<Buffer>(context_, texels.size() * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                            MemoryUsage::upload, "environment upload");
-        std::memcpy(staging_->mapped(), texels.data(), texels.size() * sizeof(float));
-        staging_->flush();
+        staging = std::make_unique<Buffer>(context, texels.size() * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                           MemoryUsage::upload, prefix + "environment upload");
+        std::memcpy(staging->mapped(), texels.data(), texels.size() * sizeof(float));
+        staging->flush();
         auto staged = graph.import_buffer(
-            "environment texels",
-            {staging_->handle(), staging_->size(),
+            prefix + "environment texels",
+            {staging->handle(), staging->size(),
              {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_WRITE_BIT}, {}});
-        out.equirect = add_upload_pass(graph, "upload environment", staged, out.equirect);
+        out.equirect = add_upload_pass(graph, "upload " + prefix + "environment", staged, out.equirect);
     }
-    auto cube = add_environment_cube_passes(graph, programs_, *equirect_sampler_, out.equirect,
-                                            graph.create_image("environment cube",
-                                                               environment_cube_desc(s.cube_size,
-                                                                                     full_mip_count(s.cube_size))));
+    auto cube = add_environment_cube_passes(
+        graph, programs, equirect_sampler, out.equirect,
+        graph.create_image(prefix + "environment cube", environment_cube_desc(cube_size, full_mip_count(cube_size))));
     if (!cube) return cube.error();
     out.cube = *cube;
+    return out;
+}
+
+}  // namespace
+
+Result<IblImages> IblBake::add_passes(RenderGraph& graph, const EnvironmentSource& source, const IblSettings& s,
+                                      const SpecularSplit& split) {
+    IblImages out;
+    auto main = add_environment(graph, context_, programs_, *equirect_sampler_, source, s.cube_size, staging_, "");
+    if (!main) return main.error();
+    out.equirect = main->equirect;
+    out.cube = main->cube;
     if (s.want_irradiance) {
         auto irradiance = add_irradiance_passes(graph, programs_, *cube_sampler_, out.cube,
                                                 graph.create_image("irradiance",
@@ -115,12 +135,25 @@ Result<IblImages> IblBake::add_passes(RenderGraph& graph, const EnvironmentSourc
         out.irradiance = *irradiance;
     }
     if (s.want_specular) {
-        auto specular = add_specular_passes(graph, programs_, *cube_sampler_, out.cube,
-                                            graph.create_image("specular",
-                                                               environment_cube_desc(s.cube_size, s.specular.levels)),
-                                            s.specular, out.equirect);
-        if (!specular) return specular.error();
-        out.specular = *specular;
+        ImageHandle specular = graph.create_image("specular", environment_cube_desc(s.cube_size, s.specular.levels));
+        SpecularSettings rough = s.specular;
+        if (split.whole && split.level > 0) {
+            if (split.whole->width != source.width || split.whole->height != source.height)
+                return Error{"light extraction: the whole environment and the map without lights differ in size"};
+            auto whole = add_environment(graph, context_, programs_, *equirect_sampler_, *split.whole, s.cube_size,
+                                         whole_staging_, "whole ");
+            if (!whole) return whole.error();
+            SpecularSettings smooth = s.specular;
+            smooth.end_level = split.level;
+            auto written = add_specular_passes(graph, programs_, *cube_sampler_, whole->cube, specular, smooth,
+                                               whole->equirect);
+            if (!written) return written.error();
+            specular = *written;
+            rough.first_level = std::max(rough.first_level, split.level);
+        }
+        auto written = add_specular_passes(graph, programs_, *cube_sampler_, out.cube, specular, rough, out.equirect);
+        if (!written) return written.error();
+        out.specular = *written;
     }
     if (s.want_lut) {
         ImageDesc lut_desc;

@@ -63,6 +63,14 @@ struct IblImages {
     BufferHandle sh9;        // sh9 irradiance coefficients, when that method runs
 };
 
+// Light extraction bakes the specular levels below `level` from the whole environment
+// (lobes narrower than the extracted lights see them as they are) and the rest, the
+// irradiance and the skybox's cube from the map without its lights.
+struct SpecularSplit {
+    const EnvironmentSource* whole = nullptr;
+    uint32_t level = 0;
+};
+
 // Owns what the passes use beyond the graph's resources (samplers, the staging buffer
 // of a file's texels), so it must outlive the graph's run.
 class IblBake {
@@ -73,7 +81,8 @@ public:
     IblBake& operator=(const IblBake&) = delete;
 
     // `settings` as returned by resolved_ibl_settings().
-    Result<IblImages> add_passes(RenderGraph& graph, const EnvironmentSource& source, const IblSettings& settings);
+    Result<IblImages> add_passes(RenderGraph& graph, const EnvironmentSource& source, const IblSettings& settings,
+                                 const SpecularSplit& split = {});
 
     const Sampler& cube_sampler() const { return *cube_sampler_; }
 
@@ -81,7 +90,7 @@ private:
     Context& context_;
     ProgramCache& programs_;
     std::unique_ptr<Sampler> equirect_sampler_, cube_sampler_;
-    std::unique_ptr<Buffer> staging_;
+    std::unique_ptr<Buffer> staging_, whole_staging_;
 };
 
 }  // namespace facet

@@ -56,9 +56,9 @@ uint32_t convolve_source_size(float roughness) {
 }
 
 uint32_t first_needed_specular_level(const SpecularSettings& settings) {
-    if (settings.levels <= 1 || settings.min_roughness <= 0.0f) return 0;
+    if (settings.levels <= 1 || settings.min_roughness <= 0.0f) return settings.first_level;
     const float lod = std::min(settings.min_roughness, 1.0f) * float(settings.levels - 1);
-    return std::min(uint32_t(std::floor(lod + 1e-5f)), settings.levels - 1);
+    return std::max(settings.first_level, std::min(uint32_t(std::floor(lod + 1e-5f)), settings.levels - 1));
 }
 
 Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& programs, const Sampler& cube_sampler,
@@ -80,7 +80,8 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
 
     ImageHandle current = specular;
     const uint32_t first = first_needed_specular_level(s);
-    if (first == 0) {
+    const uint32_t end = s.end_level ? std::min(s.end_level, s.levels) : s.levels;
+    if (first == 0 && end > 0) {
         graph.add_compute_pass("specular level 0 (copy)", [&](PassBuilder& b) {
             b.read_storage(environment, ImageRange::mip(0));
             current = b.write_storage(specular, ImageRange::mip(0));
@@ -95,7 +96,7 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
     }
 
     const std::vector<float> roughness = specular_level_roughness(s.levels);
-    for (uint32_t m = std::max(first, 1u); m < s.levels; ++m) {
+    for (uint32_t m = std::max(first, 1u); m < end; ++m) {
         const float r = roughness[m];
         const SpecularMethod method = specular_level_method(s, r);
         const uint32_t n = out.mip_width(m);

@@ -35,13 +35,19 @@ struct SpecularSettings {
     // reaches (trilinear reads floor(roughness x (levels - 1)) and the level above) are
     // not computed; their texels stay undefined.
     float min_roughness = 0.0f;
+    // Only levels [first_level, end_level) are computed (end 0: to the last), so that two
+    // calls can fill one cube from two sources (light extraction: smooth levels from the
+    // whole environment, rough ones from the map without its lights).
+    uint32_t first_level = 0;
+    uint32_t end_level = 0;
 };
 
 // Roughness of every level (level 0 = 0, last = 1).
 std::vector<float> specular_level_roughness(uint32_t levels);
 // The method a level actually uses.
 SpecularMethod specular_level_method(const SpecularSettings& settings, float roughness);
-// The first level a lookup with roughness >= settings.min_roughness can read.
+// The first level computed: the later of first_level and the first one a lookup with
+// roughness >= min_roughness can read.
 uint32_t first_needed_specular_level(const SpecularSettings& settings);
 // Face size of the source level the convolve method reads for a roughness: texels of
 // about a quarter of the GGX lobe's width, between 8 and 64 (the texel list keeps each

@@ -216,7 +216,8 @@ Result<FrameImages> ForwardRenderer::add_passes(RenderGraph& graph, const GpuSce
     FrameData frame{};
     frame.view_projection = projection * view;
     frame.camera_position = glm::vec4(s.camera.position, 1.0f);
-    frame.ibl = glm::vec4(ibl ? ibl->intensity : 0.0f, ibl ? float(ibl->specular_levels - 1) : 0.0f, 0.0f, 0.0f);
+    frame.ibl = glm::vec4(ibl ? ibl->intensity : 0.0f, ibl ? float(ibl->specular_levels - 1) : 0.0f,
+                          float(s.environment_light_level), 0.0f);
     const uint32_t disks = ibl ? uint32_t(s.environment_lights.size()) : 0u;
     frame.counts = glm::uvec4(uint32_t(s.lights.size()), disks, 0, 0);
     std::memcpy(frame_.mapped(), &frame, sizeof frame);

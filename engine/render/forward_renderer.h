@@ -50,6 +50,9 @@ struct FrameSettings {
     // Bright regions taken out of the environment before the bake (light extraction),
     // shaded as disk lights with the full BRDF; the skybox shows them again.
     std::vector<DiskLight> environment_lights;
+    // First specular level baked without the extracted lights (the smooth ones below it
+    // hold them): the disks' specular fades in across the level below it.
+    uint32_t environment_light_level = 0;
     std::vector<View> views;         // extra images, each RGBA32F, one sample per pixel
 };
 

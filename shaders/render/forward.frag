@@ -206,11 +206,14 @@ void main() {
     }
     vec3 irradiance = vec3(0.0), prefiltered = vec3(0.0);
 #ifdef USE_IBL
+    // Specular levels below frame.ibl.z still hold the extracted lights: the disks' own
+    // specular counts only for the share of the lookup read from the levels without them.
+    float disk_specular_weight = clamp(s.roughness * frame.ibl.y - (frame.ibl.z - 1.0), 0.0, 1.0);
     for (uint i = 0u; i < frame.counts.y; ++i) {
         vec3 disk_diffuse, disk_specular;
         disk_light(s, v, NdotV, lights[frame.counts.x + i], lut, disk_diffuse, disk_specular);
         diffuse += disk_diffuse * frame.ibl.x * s.occlusion;
-        specular += disk_specular * frame.ibl.x * s.occlusion;
+        specular += disk_specular * disk_specular_weight * frame.ibl.x * s.occlusion;
     }
     {
         float intensity = frame.ibl.x;

@@ -7,7 +7,7 @@
 layout(binding = 0, std140) uniform Frame {
     mat4 view_projection;
     vec4 camera_position;  // xyz
-    vec4 ibl;              // x: intensity, y: highest specular level (roughness 1)
+    vec4 ibl;              // x: intensity, y: highest specular level (roughness 1), z: first level without the extracted lights
     uvec4 counts;          // x: punctual lights, y: disk lights extracted from the environment (after them)
 } frame;
 
