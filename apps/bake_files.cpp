@@ -66,7 +66,10 @@ std::string bake_json(const BakeDescription& d, const BakeResults& r) {
         .value("width", r.environment.desc.width)
         .value("height", r.environment.desc.height)
         .value("sanitized_texels", int64_t(d.sanitized_texels))
-        .end_object()
+        .end_object();
+    j.begin_array("warnings");
+    for (const std::string& w : d.warnings) j.value({}, w);
+    j.end_array()
         .begin_object("environment_cube")
         .value("size", d.cube_size)
         .value("filtering", "4x4 supersampled bilinear; mips by solid-angle-weighted 2x2 means")

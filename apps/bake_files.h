@@ -38,6 +38,7 @@ struct BakeDescription {
     uint32_t cube_size = 0;
     float exposure = 1;
     double wall_time_ms = 0;
+    std::vector<std::string> warnings;  // methods used outside their domain (ibl/method_domain.h)
 };
 
 // The files a finished bake leaves in its directory.

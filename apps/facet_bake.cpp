@@ -19,6 +19,7 @@
 #include "graph/compiled_graph.h"
 #include "graph/graph_run.h"
 #include "ibl/ibl_bake.h"
+#include "ibl/method_domain.h"
 #include "io/atomic_file.h"
 #include "io/environment_image.h"
 #include "render/tonemap_preview.h"
@@ -174,6 +175,12 @@ int bake(const Options& o) {
 
     ShaderCompiler compiler;
     ProgramCache programs(context, compiler);
+    // Methods used outside their domain say so (bake.json and here).
+    EnvironmentSource analysed = *source;
+    if (Status st = materialize_environment(context, programs, analysed); !st) throw std::runtime_error(st.error().message);
+    const std::vector<std::string> warnings =
+        method_warnings(environment_stats(analysed.image.rgba, analysed.width, analysed.height), settings);
+    for (const std::string& w : warnings) std::fprintf(stderr, "%s: warning: %s\n", program, w.c_str());
     IblBake ibl(context, programs);
     RenderGraph graph;
     auto check = [](auto result) {
@@ -230,6 +237,7 @@ int bake(const Options& o) {
     d.irradiance = o.irradiance;
     d.specular = specular;
     d.lut = o.lut;
+    d.warnings = warnings;
     d.cube_size = cube_size;
     d.exposure = o.exposure;
     d.wall_time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

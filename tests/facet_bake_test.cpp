@@ -229,4 +229,19 @@ TEST(FacetBake, WhiteFurnaceThroughTheFiles) {
     EXPECT_EQ(lut->width, 16u);
 }
 
+// Methods used outside their domain say so, in bake.json and on stderr.
+TEST(FacetBake, WarnsWhenAMethodLeavesItsDomain) {
+    TempDir dir;
+    Ran sh9 = run("builtin:sky --width 128 --irradiance sh9 --lut-size 8 --lut-samples 16 --out " +
+                  (dir.path / "sh9").string());
+    ASSERT_EQ(sh9.status, 0) << sh9.output;
+    EXPECT_NE(sh9.output.find("warning: irradiance sh9: compact lights hold"), std::string::npos) << sh9.output;
+    const std::string json = file_bytes(dir.path / "sh9" / "bake.json");
+    EXPECT_NE(json.find("\"warnings\": [\n    \"irradiance sh9"), std::string::npos) << json;
+    Ran defaults = run("builtin:sky --width 128 --lut-size 8 --lut-samples 16 --out " + (dir.path / "ok").string());
+    ASSERT_EQ(defaults.status, 0) << defaults.output;
+    EXPECT_EQ(defaults.output.find("warning"), std::string::npos) << defaults.output;
+    EXPECT_NE(file_bytes(dir.path / "ok" / "bake.json").find("\"warnings\": []"), std::string::npos);
+}
+
 }  // namespace
