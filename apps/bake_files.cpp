@@ -69,7 +69,18 @@ std::string bake_json(const BakeDescription& d, const BakeResults& r) {
         .end_object();
     j.begin_array("warnings");
     for (const std::string& w : d.warnings) j.value({}, w);
-    j.end_array()
+    j.end_array();
+    if (d.budget_target > 0) {
+        j.begin_object("budget").value("target_rel_rmse", d.budget_target);
+        j.begin_array("roughness_range").value({}, double(d.budget_roughness_min)).value({}, double(d.budget_roughness_max)).end_array();
+        j.begin_array("choices");
+        for (const auto& c : d.budget)
+            j.begin_object().value("stage", c.stage).value("method", c.method).value("parameters", c.params)
+                .value("predicted_rel_rmse", c.predicted_error).value("measured_time_ms", c.time_ms)
+                .value("met", c.met).end_object();
+        j.end_array().end_object();
+    }
+    j
         .begin_object("environment_cube")
         .value("size", d.cube_size)
         .value("filtering", "4x4 supersampled bilinear; mips by solid-angle-weighted 2x2 means")

@@ -39,6 +39,15 @@ struct BakeDescription {
     float exposure = 1;
     double wall_time_ms = 0;
     std::vector<std::string> warnings;  // methods used outside their domain (ibl/method_domain.h)
+    // The accuracy budget, when one was given (apps/bake_budget.h).
+    struct BudgetEntry {
+        std::string stage, method, params;
+        double predicted_error = 0, time_ms = 0;
+        bool met = false;
+    };
+    double budget_target = 0;
+    float budget_roughness_min = 0, budget_roughness_max = 1;
+    std::vector<BudgetEntry> budget;
 };
 
 // The files a finished bake leaves in its directory.

@@ -19,6 +19,7 @@
 #include "io/json_writer.h"
 #include "render_job.h"
 #include "shader/program_cache.h"
+#include "ibl_measure.h"
 #include "support/ibl_reference.h"
 
 namespace facet {
@@ -33,128 +34,13 @@ struct Row {
     std::string failure;
 };
 
-struct ErrorStats {
-    double err2 = 0, ref2 = 0, max_rel = 0, peak = 0, count = 0;
-    bool bad = false;  // NaN, Inf or negative
-    void add(const test::Vec3& want, const float* got, double mean_floor) {
-        for (int c = 0; c < 3; ++c) {
-            if (!std::isfinite(got[c]) || got[c] < 0) bad = true;
-            const double d = double(got[c]) - want[size_t(c)];
-            err2 += d * d;
-            ref2 += want[size_t(c)] * want[size_t(c)];
-            peak = std::max(peak, want[size_t(c)]);
-            count += 1;
-            if (want[size_t(c)] > mean_floor) max_rel = std::max(max_rel, std::abs(d) / want[size_t(c)]);
-        }
-    }
-    void finish(Row& row, double bound) const {
-        row.rel_rmse = ref2 > 0 ? std::sqrt(err2 / ref2) : 0;
-        row.max_rel = max_rel;
-        const double rmse = std::sqrt(err2 / std::max(count, 1.0));
-        row.psnr = rmse > 0 ? 20 * std::log10(peak / rmse) : 200;
-        if (bad) row.failed = true, row.failure = "NaN, Inf or negative values";
-        else if (!std::isfinite(row.rel_rmse) || row.rel_rmse > bound)
-            row.failed = true, row.failure = "error above the bound of " + std::to_string(int(std::lround(bound * 100))) + "%";
-    }
-};
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0 : v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
-// Passes every bake shares (input, cube, its mips) do not count towards a method's time.
-bool shared_pass(const std::string& name) {
-    return name == "upload environment" || name == "procedural sky" || name == "equirect to cube" ||
-           name.rfind("cube mip", 0) == 0;
-}
-
-struct Baked {
-    std::vector<std::vector<float>> faces;  // [level * 6 + face] RGBA texels
-    uint32_t size = 0, levels = 0;
-    double gpu_ms = 0;
-};
-
-class Sweep {
-public:
-    Sweep(Context& context, int runs) : context_(context), programs_(context, compiler_), runs_(runs) {}
-
-    // Bakes `what` ("irradiance", "specular" or "lut") with `settings`, `runs` times.
-    Result<Baked> bake(const EnvironmentSource& env, IblSettings settings, const std::string& what) {
-        settings.want_irradiance = what == "irradiance";
-        settings.want_specular = what == "specular";
-        settings.want_lut = what == "lut";
-        settings = resolved_ibl_settings(settings, env);
-        Baked out;
-        std::vector<double> times;
-        for (int r = 0; r < runs_; ++r) {
-            IblBake ibl(context_, programs_);
-            RenderGraph graph;
-            auto images = ibl.add_passes(graph, env, settings);
-            if (!images) return images.error();
-            const ImageHandle result = what == "irradiance" ? images->irradiance : what == "specular" ? images->specular
-                                                                                                     : images->lut;
-            graph.export_image(result, {VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                                        VK_ACCESS_2_TRANSFER_READ_BIT});
-            CompiledGraph compiled = graph.compile();
-            GraphRun run(context_, compiled);
-            // Pass by pass, each submission waited for: wall time per pass. Lavapipe's
-            // timestamps undercount compute passes, so they cannot rank methods.
-            double ms = 0;
-            auto last = std::chrono::steady_clock::now();
-            run.submit_and_wait([&](uint32_t, uint32_t, const std::string& pass) {
-                const auto now = std::chrono::steady_clock::now();
-                if (!shared_pass(pass)) ms += std::chrono::duration<double, std::milli>(now - last).count();
-                last = now;
-            });
-            times.push_back(ms);
-            if (r + 1 < runs_) continue;
-            const Image& image = *run.transient_image(result);
-            out.size = image.desc().width;
-            out.levels = image.desc().mip_levels;
-            for (uint32_t m = 0; m < out.levels; ++m)
-                for (uint32_t f = 0; f < image.desc().array_layers; ++f) {
-                    auto bytes = read_image(context_, image, m, f, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-                    std::vector<float> v(bytes.size() / 4);
-                    std::memcpy(v.data(), bytes.data(), v.size() * 4);
-                    out.faces.push_back(std::move(v));
-                }
-        }
-        out.gpu_ms = median(times);
-        return out;
-    }
-
-    Context& context() { return context_; }
-    ProgramCache& programs() { return programs_; }
-
-private:
-    Context& context_;
-    ShaderCompiler compiler_;
-    ProgramCache programs_;
-    int runs_;
-};
-
-// A cube level compared with `truth(direction)` at 4 x 4 texels per face; any NaN, Inf or
-// negative texel anywhere counts as a failure.
-void compare_cube(const Baked& b, uint32_t level, const std::function<test::Vec3(const test::Vec3&)>& truth,
-                  ErrorStats& stats) {
-    const uint32_t n = std::max(1u, b.size >> level);
-    std::vector<std::pair<test::Vec3, const float*>> points;
-    double mean = 0;
-    for (uint32_t f = 0; f < 6; ++f) {
-        const std::vector<float>& face = b.faces[level * 6 + f];
-        for (float v : face)
-            if (!std::isfinite(v) || v < 0) stats.bad = true;
-        for (uint32_t j = 0; j < std::min(n, 4u); ++j)
-            for (uint32_t i = 0; i < std::min(n, 4u); ++i) {
-                const uint32_t x = (2 * i + 1) * n / (2 * std::min(n, 4u)), y = (2 * j + 1) * n / (2 * std::min(n, 4u));
-                const test::Vec3 d = test::cube_texel_direction(f, x, y, n);
-                points.push_back({truth(d), &face[(size_t(y) * n + x) * 4]});
-                mean += test::luminance(points.back().first);
-            }
-    }
-    mean /= double(points.size());
-    for (auto& [want, got] : points) stats.add(want, got, 0.01 * mean);
+void finish(const ErrorStats& stats, Row& row, double bound) {
+    row.rel_rmse = stats.rel_rmse();
+    row.max_rel = stats.max_rel;
+    row.psnr = stats.psnr();
+    if (stats.bad) row.failed = true, row.failure = "NaN, Inf or negative values";
+    else if (!std::isfinite(row.rel_rmse) || row.rel_rmse > bound)
+        row.failed = true, row.failure = "error above the bound of " + std::to_string(int(std::lround(bound * 100))) + "%";
 }
 
 Result<test::Equirect> texels_of(Context& context, ProgramCache& programs, EnvironmentSource& env) {
@@ -231,7 +117,7 @@ int run_sweep(const cli::Parsed& a) {
         return 1;
     }
     Context& context = *created.value();
-    Sweep sweep(context, runs);
+    IblMeasure sweep(context, runs);
     std::vector<Row> rows;
     auto fail = [](const std::string& message) {
         std::fprintf(stderr, "facet-bench: error: %s\n", message.c_str());
@@ -250,7 +136,7 @@ int run_sweep(const cli::Parsed& a) {
         std::fprintf(stderr, "facet-bench: sweep %s (%ux%u)\n", label.c_str(), e.w, e.h);
         auto record = [&](Row row, const ErrorStats& stats, double bound) {
             row.env = label;
-            stats.finish(row, bound);
+            finish(stats, row, bound);
             std::fprintf(stderr, "facet-bench:   %-10s %-10s %-22s %8.2f ms  relRMSE %.4f%s\n", row.stage.c_str(),
                          row.method.c_str(), row.params.c_str(), row.gpu_ms, row.rel_rmse,
                          row.failed ? ("  FAILED: " + row.failure).c_str() : "");
@@ -352,7 +238,7 @@ int run_sweep(const cli::Parsed& a) {
                         }
                     Row row{"", "lut", "lut " + std::to_string(size), std::to_string(samples) + " samples", baked->gpu_ms};
                     row.env = "any";
-                    stats.finish(row, 0.05);
+                    finish(stats, row, 0.05);
                     rows.push_back(row);
                     std::fprintf(stderr, "facet-bench:   lut %3u^2 %5u samples %8.2f ms  relRMSE %.5f\n", size, samples,
                                  row.gpu_ms, row.rel_rmse);

@@ -11,6 +11,7 @@
 #include <optional>
 #include <vector>
 
+#include "bake_budget.h"
 #include "bake_files.h"
 #include "cli.h"
 #include "core/hash.h"
@@ -38,6 +39,8 @@ struct Options {
     uint32_t cube_size = 0;  // 0: input height / 2
     float exposure = 1.0f;
     bool validation = false, sanitize = false, force = false;
+    double target_error = 0;  // 0: no accuracy budget
+    float roughness_min = 0.0f, roughness_max = 1.0f;
     IrradianceSettings irradiance;
     SpecularSettings specular;
     BrdfLutSettings lut;
@@ -65,6 +68,9 @@ cli::Parser make_parser() {
         .option("--width", "N", "width of a built-in environment (default 1024, height N/2)")
         .option("--exposure", "E", "exposure of environment.png (default 1)")
         .flag("--sanitize", "replace NaN, Inf and negative texels of ENV with 0 instead of failing")
+        .option("--target-error", "E", "accuracy budget: the cheapest methods whose measured relative RMS error\n"
+                                        "                          against the brute-force truth is at most E (e.g. 0.02)")
+        .option("--roughness", "A,B", "budget: the scene's roughness range; specular is judged on it (default 0,1)")
         .flag("--force", "bake even if DIR holds a bake of the same input and settings")
         .option("--device", "NAME|INDEX", "Vulkan device (default: FACET_DEVICE, a GPU, else lavapipe)")
         .flag("--validation", "enable the Khronos validation layer")
@@ -112,6 +118,16 @@ std::optional<Options> parse(int argc, char** argv) {
     }
     if (a.has("--sh9-no-window")) o.irradiance.sh9_windowing = false;
     o.sanitize = a.has("--sanitize");
+    if (a.has("--target-error")) {
+        o.target_error = cli::parse_double(a.get("--target-error"), "--target-error");
+        if (!(o.target_error > 0 && o.target_error < 10)) throw std::invalid_argument("--target-error must be in (0, 10)");
+    }
+    if (a.has("--roughness")) {
+        char extra;
+        if (std::sscanf(a.get("--roughness").c_str(), "%f,%f%c", &o.roughness_min, &o.roughness_max, &extra) != 2 ||
+            !(o.roughness_min >= 0 && o.roughness_min <= o.roughness_max && o.roughness_max <= 1))
+            throw std::invalid_argument("--roughness: expected A,B with 0 <= A <= B <= 1, got '" + a.get("--roughness") + "'");
+    }
     o.force = a.has("--force");
     o.device = a.get("--device");
     o.validation = a.has("--validation");
@@ -128,7 +144,8 @@ std::string bake_key(const Options& o, const EnvironmentSource& s, uint32_t cube
                              double(o.irradiance.source_size), o.irradiance.riemann_step, o.irradiance.blur_sigma,
                              double(o.irradiance.lowmip_size), double(o.irradiance.sh9_windowing), double(int(o.specular.method)),
                              double(o.specular.sample_count), o.specular.automatic_convolve_from,
-                             double(o.lut.size), double(o.lut.sample_count), double(int(o.lut.visibility))};
+                             double(o.lut.size), double(o.lut.sample_count), double(int(o.lut.visibility)),
+                             o.target_error, double(o.roughness_min), double(o.roughness_max)};
     h.add(values, sizeof values);
     return h.hex();
 }
@@ -153,7 +170,7 @@ int bake(const Options& o) {
     requested.irradiance = o.irradiance;
     requested.specular = o.specular;
     requested.lut = o.lut;
-    const IblSettings settings = resolved_ibl_settings(requested, *source);
+    IblSettings settings = resolved_ibl_settings(requested, *source);
     const uint32_t cube_size = settings.cube_size;
     const SpecularSettings& specular = settings.specular;
     const std::string key = bake_key(o, *source, cube_size, specular.levels);
@@ -178,6 +195,21 @@ int bake(const Options& o) {
     // Methods used outside their domain say so (bake.json and here).
     EnvironmentSource analysed = *source;
     if (Status st = materialize_environment(context, programs, analysed); !st) throw std::runtime_error(st.error().message);
+    std::optional<Budget> budget;
+    if (o.target_error > 0) {
+        // The accuracy budget: the cheapest methods that meet the target, measured here.
+        auto chosen = choose_within_budget(context, analysed, settings, o.target_error, o.roughness_min,
+                                           o.roughness_max, [](const std::string& line) {
+                                               std::fprintf(stderr, "%s: %s\n", program, line.c_str());
+                                           });
+        if (!chosen) throw std::runtime_error(chosen.error().message);
+        budget = *chosen;
+        settings = budget->settings;
+        for (const BudgetChoice& c : budget->choices)
+            std::fprintf(stderr, "%s: budget %.3g: %s %s (%s), predicted error %.4f%s\n", program, o.target_error,
+                         c.stage.c_str(), c.method.c_str(), c.params.c_str(), c.predicted_error,
+                         c.met ? "" : " (nothing met the target: the most accurate)");
+    }
     const std::vector<std::string> warnings =
         method_warnings(environment_stats(analysed.image.rgba, analysed.width, analysed.height), settings);
     for (const std::string& w : warnings) std::fprintf(stderr, "%s: warning: %s\n", program, w.c_str());
@@ -234,9 +266,16 @@ int bake(const Options& o) {
     d.bake_key = key;
     d.device = context.device_name();
     d.version = FACET_VERSION;
-    d.irradiance = o.irradiance;
-    d.specular = specular;
-    d.lut = o.lut;
+    d.irradiance = settings.irradiance;
+    d.specular = settings.specular;
+    d.lut = settings.lut;
+    if (budget) {
+        d.budget_target = budget->target;
+        d.budget_roughness_min = budget->roughness_min;
+        d.budget_roughness_max = budget->roughness_max;
+        for (const BudgetChoice& c : budget->choices)
+            d.budget.push_back({c.stage, c.method, c.params, c.predicted_error, c.time_ms, c.met});
+    }
     d.warnings = warnings;
     d.cube_size = cube_size;
     d.exposure = o.exposure;

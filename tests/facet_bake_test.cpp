@@ -12,7 +12,9 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "io/environment_image.h"
 #include "io/ktx2.h"
+#include "support/ibl_reference.h"
 
 namespace {
 
@@ -242,6 +244,52 @@ TEST(FacetBake, WarnsWhenAMethodLeavesItsDomain) {
     ASSERT_EQ(defaults.status, 0) << defaults.output;
     EXPECT_EQ(defaults.output.find("warning"), std::string::npos) << defaults.output;
     EXPECT_NE(file_bytes(dir.path / "ok" / "bake.json").find("\"warnings\": []"), std::string::npos);
+}
+
+// The accuracy budget: a loose target picks cheaper methods than a tight one; every
+// choice records its predicted error, which the bake then meets: the irradiance written
+// to irradiance.ktx2, compared here with the brute-force integral over environment.exr.
+TEST(FacetBake, AccuracyBudgetPicksTheCheapestMethodThatMeetsIt) {
+    TempDir dir;
+    const std::string common = "builtin:sky --width 128 --roughness 0.3,1 --out ";
+    Ran loose = run(common + (dir.path / "loose").string() + " --target-error 0.5");
+    ASSERT_EQ(loose.status, 0) << loose.output;
+    Ran tight = run(common + (dir.path / "tight").string() + " --target-error 0.02");
+    ASSERT_EQ(tight.status, 0) << tight.output;
+    const std::string loose_json = file_bytes(dir.path / "loose" / "bake.json");
+    const std::string tight_json = file_bytes(dir.path / "tight" / "bake.json");
+    for (const std::string* json : {&loose_json, &tight_json}) {
+        EXPECT_NE(json->find("\"budget\": {"), std::string::npos) << *json;
+        EXPECT_NE(json->find("\"roughness_range\""), std::string::npos);
+        EXPECT_EQ(json->find("\"met\": false"), std::string::npos) << *json;
+    }
+    // Under the sun, sh9 (7%) is enough for 50% but not for 2%.
+    EXPECT_NE(loose_json.find("\"method\": \"sh9\""), std::string::npos) << loose_json;
+    EXPECT_NE(tight_json.find("\"method\": \"convolve\""), std::string::npos) << tight_json;
+
+    // The tight bake's irradiance meets its prediction over 96 texels it was not measured on.
+    auto env = facet::load_environment((dir.path / "tight" / "environment.exr").string());
+    ASSERT_TRUE(env) << env.error().message;
+    const facet::test::Equirect e{env->width, env->height, env->rgba};
+    auto ktx = facet::read_ktx2((dir.path / "tight" / "irradiance.ktx2").string());
+    ASSERT_TRUE(ktx) << ktx.error().message;
+    const uint32_t n = ktx->width;
+    double err2 = 0, ref2 = 0;
+    for (uint32_t face = 0; face < 6; ++face)
+        for (uint32_t k = 0; k < 16; ++k) {
+            const uint32_t x = (k * 7 + 3) % n, y = (k * 11 + 5) % n;
+            const facet::test::Vec3 want =
+                facet::test::irradiance_over_pi(e, facet::test::cube_texel_direction(face, x, y, n));
+            // RGBA16F, face after face.
+            const auto* halves = reinterpret_cast<const uint16_t*>(ktx->level_data[0].data());
+            const size_t texel = (size_t(face) * n + y) * n + x;
+            for (int c = 0; c < 3; ++c) {
+                const double d = facet::half_to_float(halves[texel * 4 + size_t(c)]) - want[size_t(c)];
+                err2 += d * d;
+                ref2 += want[size_t(c)] * want[size_t(c)];
+            }
+        }
+    EXPECT_LT(std::sqrt(err2 / ref2), 0.02) << "irradiance against the truth";
 }
 
 }  // namespace

@@ -1,0 +1,38 @@
+#pragma once
+// The accuracy budget: given a target error, facet-bake picks for this environment the
+// cheapest irradiance method, specular method (judged only on the levels of the scene's
+// roughness range) and LUT that meet it, each measured by baking it and comparing with
+// the brute-force truth at sampled directions (ibl_measure.h). The choice and the
+// measured error (the prediction for the full bake) go into bake.json.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/result.h"
+#include "ibl/ibl_bake.h"
+
+namespace facet {
+
+class Context;
+
+struct BudgetChoice {
+    std::string stage, method, params;
+    double predicted_error = 0;  // relative RMS against the truth at the sampled directions
+    double time_ms = 0;          // wall time of the stage's passes when measured
+    bool met = false;            // false: nothing met the target; the most accurate is used
+};
+
+struct Budget {
+    double target = 0.02;
+    float roughness_min = 0.0f, roughness_max = 1.0f;
+    IblSettings settings;  // the base settings with the chosen methods
+    std::vector<BudgetChoice> choices;
+};
+
+// `env` must hold its texels (materialize_environment). Candidates are tried from the
+// cheapest (by facet-bench sweep's timings) until one meets the target.
+Result<Budget> choose_within_budget(Context& context, const EnvironmentSource& env, const IblSettings& base,
+                                    double target, float roughness_min, float roughness_max,
+                                    const std::function<void(const std::string&)>& progress = {});
+
+}  // namespace facet

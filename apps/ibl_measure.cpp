@@ -1,0 +1,97 @@
+#include "ibl_measure.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+
+#include "gpu/context.h"
+#include "gpu/transfer.h"
+#include "graph/compiled_graph.h"
+#include "graph/graph_run.h"
+
+namespace facet {
+namespace {
+
+// Passes every bake shares (input, cube, its mips) do not count towards a method's time.
+bool shared_pass(const std::string& name) {
+    return name == "upload environment" || name == "procedural sky" || name == "equirect to cube" ||
+           name.rfind("cube mip", 0) == 0;
+}
+
+}  // namespace
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0 : v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+IblMeasure::IblMeasure(Context& context, int runs) : context_(context), programs_(context, compiler_), runs_(runs) {}
+
+Result<Baked> IblMeasure::bake(const EnvironmentSource& env, IblSettings settings, const std::string& what) {
+    settings.want_irradiance = what == "irradiance";
+    settings.want_specular = what == "specular";
+    settings.want_lut = what == "lut";
+    settings = resolved_ibl_settings(settings, env);
+    Baked out;
+    std::vector<double> times;
+    for (int r = 0; r < runs_; ++r) {
+        IblBake ibl(context_, programs_);
+        RenderGraph graph;
+        auto images = ibl.add_passes(graph, env, settings);
+        if (!images) return images.error();
+        const ImageHandle result = what == "irradiance" ? images->irradiance : what == "specular" ? images->specular
+                                                                                                 : images->lut;
+        graph.export_image(result, {VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                                    VK_ACCESS_2_TRANSFER_READ_BIT});
+        CompiledGraph compiled = graph.compile();
+        GraphRun run(context_, compiled);
+        // Pass by pass, each submission waited for: wall time per pass. Lavapipe's
+        // timestamps undercount compute passes, so they cannot rank methods.
+        double ms = 0;
+        auto last = std::chrono::steady_clock::now();
+        run.submit_and_wait([&](uint32_t, uint32_t, const std::string& pass) {
+            const auto now = std::chrono::steady_clock::now();
+            if (!shared_pass(pass)) ms += std::chrono::duration<double, std::milli>(now - last).count();
+            last = now;
+        });
+        times.push_back(ms);
+        if (r + 1 < runs_) continue;
+        const Image& image = *run.transient_image(result);
+        out.size = image.desc().width;
+        out.levels = image.desc().mip_levels;
+        for (uint32_t m = 0; m < out.levels; ++m)
+            for (uint32_t f = 0; f < image.desc().array_layers; ++f) {
+                auto bytes = read_image(context_, image, m, f, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+                std::vector<float> v(bytes.size() / 4);
+                std::memcpy(v.data(), bytes.data(), v.size() * 4);
+                out.faces.push_back(std::move(v));
+            }
+    }
+    out.gpu_ms = median(times);
+    return out;
+}
+
+// A cube level compared with `truth(direction)` at 4 x 4 texels per face; any NaN, Inf or
+// negative texel anywhere counts as a failure.
+void compare_cube(const Baked& b, uint32_t level, const std::function<test::Vec3(const test::Vec3&)>& truth,
+                  ErrorStats& stats, uint32_t k_max) {
+    const uint32_t n = std::max(1u, b.size >> level);
+    std::vector<std::pair<test::Vec3, const float*>> points;
+    double mean = 0;
+    for (uint32_t f = 0; f < 6; ++f) {
+        const std::vector<float>& face = b.faces[level * 6 + f];
+        for (float v : face)
+            if (!std::isfinite(v) || v < 0) stats.bad = true;
+        for (uint32_t j = 0; j < std::min(n, k_max); ++j)
+            for (uint32_t i = 0; i < std::min(n, k_max); ++i) {
+                const uint32_t x = (2 * i + 1) * n / (2 * std::min(n, k_max)), y = (2 * j + 1) * n / (2 * std::min(n, k_max));
+                const test::Vec3 d = test::cube_texel_direction(f, x, y, n);
+                points.push_back({truth(d), &face[(size_t(y) * n + x) * 4]});
+                mean += test::luminance(points.back().first);
+            }
+    }
+    mean /= double(points.size());
+    for (auto& [want, got] : points) stats.add(want, got, 0.01 * mean);
+}
+
+}  // namespace facet
