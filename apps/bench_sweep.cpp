@@ -273,6 +273,7 @@ int run_sweep(const cli::Parsed& a) {
             base.env = env_file;
             base.frame.width = base.frame.height = 140;
             base.frame.skybox = false;
+            base.frame.views = {View::position};
             std::vector<float> reference;
             for (const Config& c : configs) {
                 RenderJob job = base;
@@ -288,18 +289,42 @@ int run_sweep(const cli::Parsed& a) {
                 }
                 std::vector<double> times;
                 std::vector<float> image;
+                std::vector<std::pair<View, std::vector<float>>> frame_views;
                 for (int r = 0; r < runs; ++r) {
                     auto frame = (*session)->render_frame(true);
                     if (!frame) return fail(frame.error().message);
                     double ms = 0;
-                    for (const PassTiming& t : frame->pass_wall) ms += t.time_ms;
+                    for (const PassTiming& t : frame->pass_wall)
+                        if (t.name.rfind("view ", 0) != 0) ms += t.time_ms;
                     times.push_back(ms);
                     image = frame->hdr;
+                    frame_views = frame->views;
                 }
                 ErrorStats stats;
                 for (size_t i = 0; i + 3 < image.size(); i += 4)
                     if (reference[i + 3] >= 1.0f && image[i + 3] >= 1.0f)
                         stats.add({reference[i], reference[i + 1], reference[i + 2]}, &image[i], 0.01);
+                // Per roughness, for the dielectric (bottom) and metal (top) rows: the split
+                // sum before and after light extraction (stage "extraction").
+                if (c.params == std::string("defaults") &&
+                    (c.method == std::string("split sum") || c.method == std::string("extraction"))) {
+                    const std::vector<float>& positions = frame_views.at(0).second;
+                    for (int row : {0, 6})
+                        for (int col = 0; col < 7; ++col) {
+                            ErrorStats sphere;
+                            for (size_t i = 0; i + 3 < image.size(); i += 4) {
+                                if (reference[i + 3] < 1.0f || image[i + 3] < 1.0f) continue;
+                                const int sc = int(std::lround(positions[i] / 2.5 + 3)),
+                                          sr = int(std::lround(positions[i + 1] / 2.5 + 3));
+                                if (sc == col && sr == row)
+                                    sphere.add({reference[i], reference[i + 1], reference[i + 2]}, &image[i], 0.01);
+                            }
+                            Row r{label, "extraction", std::string(c.method) + (row ? ", metal" : ", dielectric"),
+                                  "roughness " + std::to_string(col) + "/6", 0.0};
+                            finish(sphere, r, 10.0);
+                            rows.push_back(r);
+                        }
+                }
                 // Frame time: wall time of its passes (lavapipe's compute timestamps undercount).
                 record({"", "image", c.method, c.params, median(times)}, stats, 0.25);
             }

@@ -35,6 +35,7 @@ DESCRIPTIONS = {
     "extraction+dominant": "light extraction and the dominant direction together",
 }
 STAGE_TITLES = {
+    "extraction": "Light extraction: error against the reference mode per roughness (builtin:spheres rows)",
     "irradiance": "Diffuse irradiance: error against the brute-force integral",
     "specular": "Specular prefilter (every level): error against the brute-force GGX integral",
     "lut": "Split-sum LUT: error against quadrature",
@@ -107,6 +108,33 @@ def chart(stage, points, front, out_dir):
     plt.close(fig)
 
 
+def roughness_chart(rows, out_dir):
+    """Error against roughness, split sum alone and with light extraction, dielectric and
+    metal rows; one panel per environment."""
+    envs = sorted({r["environment"] for r in rows})
+    fig, axes = plt.subplots(1, len(envs), figsize=(3.2 * len(envs), 3.6), squeeze=False, sharey=True)
+    styles = {"split sum, dielectric": ("tab:blue", "--"), "split sum, metal": ("tab:red", "--"),
+              "extraction, dielectric": ("tab:blue", "-"), "extraction, metal": ("tab:red", "-")}
+    for ax, env in zip(axes[0], envs):
+        for method, (color, style) in styles.items():
+            mine = [r for r in rows if r["environment"] == env and r["method"] == method]
+            mine.sort(key=lambda r: r["parameters"])
+            xs = [int(r["parameters"].split()[1].split("/")[0]) / 6 for r in mine]
+            ax.plot(xs, [max(r["rel_rmse"], 1e-4) for r in mine], style, color=color, marker="o", markersize=3,
+                    label=method)
+        ax.set_title(env, fontsize=8)
+        ax.set_yscale("log")
+        ax.set_xlabel("roughness", fontsize=8)
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0][0].set_ylabel("relative RMS error")
+    axes[0][0].legend(fontsize=6)
+    fig.suptitle(STAGE_TITLES["extraction"], fontsize=9)
+    fig.tight_layout()
+    for ext in ("svg", "png"):
+        fig.savefig(os.path.join(out_dir, f"chart_extraction.{ext}"), dpi=110)
+    plt.close(fig)
+
+
 def paragraph(method, points, front):
     mine = [p for p in points if p["method"] == method]
     best = min(mine, key=lambda p: p["rel_rmse"])
@@ -146,6 +174,9 @@ def main():
              f"`facet-bench sweep` on {data['device']}, environments downsampled to {data['environment_width']} "
              f"texels wide, {data['runs']} runs per setting (medians). Environments: "
              f"{', '.join(sorted({r['environment'] for r in rows if r['environment'] != 'any'}))}.", ""]
+    extraction = [r for r in rows if r["stage"] == "extraction"]
+    if extraction:
+        roughness_chart(extraction, out_dir)
     for stage in ("irradiance", "specular", "lut", "image"):
         stage_rows = [r for r in rows if r["stage"] == stage]
         if not stage_rows:
@@ -156,6 +187,17 @@ def main():
         lines += [f"## {STAGE_TITLES[stage]}", "", f"![{stage}](chart_{stage}.png)", ""]
         for method in sorted({p["method"] for p in points}):
             lines += [paragraph(method, points, front), ""]
+    if extraction:
+        lines += [f"## {STAGE_TITLES['extraction']}", "", "![extraction](chart_extraction.png)", "",
+                  "| environment | material | roughness | split sum | with extraction |", "|---|---|---|---|---|"]
+        for r in sorted((r for r in extraction if r["method"].startswith("split sum")),
+                        key=lambda r: (r["environment"], r["method"], r["parameters"])):
+            material = r["method"].split(", ")[1]
+            after = next(x for x in extraction if x["environment"] == r["environment"] and
+                         x["method"] == "extraction, " + material and x["parameters"] == r["parameters"])
+            lines.append(f"| {r['environment']} | {material} | {r['parameters'].split()[1]} | "
+                         f"{100 * r['rel_rmse']:.1f}% | {100 * after['rel_rmse']:.1f}% |")
+        lines.append("")
     report = os.path.join(out_dir, "report.md")
     with open(report + ".tmp", "w") as f:
         f.write("\n".join(lines))

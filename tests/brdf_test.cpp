@@ -122,11 +122,13 @@ TEST_F(BrdfTest, GgxProjectedAreaIntegratesToOne) {
     }
 }
 
-// Where the formulas divide by zero (roughness 0, n.v = 0): finite, non-negative values.
+// Where the formulas divide by zero (roughness 0 and 1e-4, n.v = 0 and 1e-6): finite,
+// non-negative values.
 TEST_F(BrdfTest, FiniteAtRoughnessZeroAndGrazingAngles) {
     std::vector<BrdfInput> inputs = {
         {1.0f, 1.0f, 1.0f, 1.0f, 0.0f, 0.04f, 0, 0}, {0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.04f, 0, 0},
         {0.0f, 1.0f, 0.0f, 0.0f, 1.0f, 1.0f, 0, 0},  {1e-6f, 1e-6f, 1.0f, 1e-6f, 0.0f, 0.5f, 0, 0},
+        {1e-6f, 0.5f, 1.0f, 0.5f, 1e-4f, 0.04f, 0, 0}, {0.0f, 0.0f, 0.999f, 0.0f, 1e-4f, 1.0f, 0, 0},
     };
     auto out = evaluate(ctx(), inputs);
     ASSERT_EQ(out.size(), inputs.size());
