@@ -140,16 +140,7 @@ Result<Budget> choose_within_budget(Context& context, const EnvironmentSource& e
                 settings.lut = s;
                 auto baked = measure.bake(env, settings, "lut");
                 if (!baked) return baked.error();
-                ErrorStats stats;
-                for (uint32_t j = 0; j < 4; ++j)
-                    for (uint32_t i = 0; i < 4; ++i) {
-                        const uint32_t x = (2 * i + 1) * s.size / 8, y = (2 * j + 1) * s.size / 8;
-                        const test::Ab ab = test::brdf_lut_reference((x + 0.5) / s.size, (y + 0.5) / s.size,
-                                                                     s.visibility == LutVisibility::height_correlated);
-                        const float* got = &baked->faces[0][(size_t(y) * s.size + x) * 4];
-                        const float values[3] = {got[0], got[1], 0.0f};
-                        stats.add({ab.a, ab.b, 0.0}, values, 0.01);
-                    }
+                const ErrorStats stats = lut_error(*baked, s.visibility == LutVisibility::height_correlated);
                 return std::pair{stats_of(stats), baked->gpu_ms};
             },
             progress);

@@ -94,4 +94,31 @@ void compare_cube(const Baked& b, uint32_t level, const std::function<test::Vec3
     for (auto& [want, got] : points) stats.add(want, got, 0.01 * mean);
 }
 
+ErrorStats lut_error(const Baked& lut, bool height_correlated) {
+    ErrorStats stats;
+    const uint32_t n = lut.size;
+    const std::vector<float>& t = lut.faces[0];
+    for (float v : t)
+        if (!std::isfinite(v) || v < 0) stats.bad = true;
+    auto texel = [&](int x, int y, int c) {
+        x = std::clamp(x, 0, int(n) - 1);
+        y = std::clamp(y, 0, int(n) - 1);
+        return double(t[(size_t(y) * n + size_t(x)) * 4 + size_t(c)]);
+    };
+    for (uint32_t j = 0; j < 8; ++j)
+        for (uint32_t i = 0; i < 8; ++i) {
+            const double u = (i + 0.3) / 8, v = (j + 0.6) / 8;  // NdotV, roughness
+            const double x = u * n - 0.5, y = v * n - 0.5;
+            const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+            const double fx = x - x0, fy = y - y0;
+            float got[3] = {0, 0, 0};
+            for (int c = 0; c < 2; ++c)
+                got[c] = float((1 - fy) * ((1 - fx) * texel(x0, y0, c) + fx * texel(x0 + 1, y0, c)) +
+                               fy * ((1 - fx) * texel(x0, y0 + 1, c) + fx * texel(x0 + 1, y0 + 1, c)));
+            const test::Ab ab = test::brdf_lut_reference(u, v, height_correlated);
+            stats.add({ab.a, ab.b, 0.0}, got, 0.01);
+        }
+    return stats;
+}
+
 }  // namespace facet

@@ -66,4 +66,9 @@ private:
 void compare_cube(const Baked& b, uint32_t level, const std::function<test::Vec3(const test::Vec3&)>& truth,
                   ErrorStats& stats, uint32_t k = 4);
 
+// A baked LUT (A, B) against quadrature at 8 x 8 points between texel centres, read with
+// bilinear filtering as the renderer reads it, so that a coarse LUT shows its
+// interpolation error.
+ErrorStats lut_error(const Baked& lut, bool height_correlated);
+
 }  // namespace facet
