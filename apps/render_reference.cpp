@@ -1,0 +1,134 @@
+// RenderSession::render_reference (the reference mode for a whole frame) and the helpers
+// every frame of a session shares: importing the baked IBL images, reading images back.
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+
+#include "gpu/context.h"
+#include "gpu/transfer.h"
+#include "render/gpu_scene.h"
+#include "render_session_state.h"
+
+namespace facet {
+
+// The baked images enter a frame's graph as imported resources, already readable by
+// shaders, and are left that way for the next frame.
+std::optional<IblInputs> import_ibl(RenderSession::State& s, RenderGraph& graph) {
+    if (!s.env) return std::nullopt;
+    auto import = [&](ImageHandle h, const char* name) -> ImageHandle {
+        if (!h.valid()) return {};
+        const Image* baked = s.bake_run->transient_image(h);
+        return graph.import_image(name, {baked->handle(), baked->desc(), sampled_by_fragments, sampled_by_fragments});
+    };
+    IblInputs in;
+    in.cube = import(s.ibl_images.cube, "environment cube");
+    in.irradiance = import(s.ibl_images.irradiance, "irradiance");
+    in.specular = import(s.ibl_images.specular, "specular");
+    in.lut = import(s.ibl_images.lut, "brdf lut");
+    in.specular_levels = s.ibl_settings.specular.levels;
+    in.cube_sampler = s.ibl_bake->cube_sampler().handle();
+    in.intensity = s.job.ibl_intensity;
+    return in;
+}
+
+std::vector<float> read_floats(Context& context, const Image& image, VkImageLayout layout) {
+    auto bytes = read_image(context, image, 0, 0, layout);
+    std::vector<float> values(bytes.size() / sizeof(float));
+    std::memcpy(values.data(), bytes.data(), values.size() * sizeof(float));
+    return values;
+}
+
+Result<RenderedImages> RenderSession::render_reference(const ReferenceSettings& settings,
+                                                       const ReferenceRenderer::Progress& progress,
+                                                       ReferenceStats* stats_out) {
+    State& s = *state_;
+    Context& context = *s.context;
+    const auto start = std::chrono::steady_clock::now();
+    if (!s.reference) {
+        s.reference = std::make_unique<ReferenceRenderer>(context, *s.programs);
+        if (s.env) {
+            // The reference integrates the very texels the bake started from (before any
+            // light extraction: the whole environment).
+            std::vector<float> texels = s.original_texels;
+            if (texels.empty())
+                texels = read_floats(context, *s.bake_run->transient_image(s.ibl_images.equirect),
+                                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+            s.reference->set_environment(texels, s.env->width, s.env->height, s.job.ibl_intensity);
+        }
+    }
+    // The surface each pixel sees, one sample per pixel.
+    const std::vector<View> surface_views = {View::normal, View::position, View::basecolor, View::metallic,
+                                             View::roughness, View::specular_f0, View::emissive};
+    FrameSettings surface_frame = s.frame;
+    surface_frame.views = surface_views;
+    for (View v : s.frame.views)
+        if (std::find(surface_views.begin(), surface_views.end(), v) == surface_views.end())
+            surface_frame.views.push_back(v);
+    const ResourceState sampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+    RenderGraph surface_graph;
+    auto surface_images = s.renderer->add_passes(surface_graph, *s.gpu_scene, surface_frame, import_ibl(s, surface_graph));
+    if (!surface_images) return surface_images.error();
+    for (auto& [view, handle] : surface_images->views) surface_graph.export_image(handle, sampled);
+    CompiledGraph surface_compiled = surface_graph.compile();
+    GraphRun surface_run(context, surface_compiled);
+    surface_run.submit_and_wait();
+    auto view_image = [&](View v) -> const Image* {
+        for (auto& [view, handle] : surface_images->views)
+            if (view == v) return surface_run.transient_image(handle);
+        return nullptr;
+    };
+    const ReferenceSurface surface{view_image(View::normal),    view_image(View::position), view_image(View::basecolor),
+                                   view_image(View::metallic),  view_image(View::roughness), view_image(View::specular_f0),
+                                   view_image(View::emissive)};
+    auto stats = s.reference->accumulate(surface, s.frame, settings, progress);
+    if (!stats) return stats.error();
+    if (stats_out) *stats_out = *stats;
+
+    // Sums -> radiance, the skybox under it, the display transform.
+    RenderGraph graph;
+    const ResourceState storage{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
+    Image& acc = s.reference->accumulation();
+    ImageHandle accumulation = graph.import_image("accumulation", {acc.handle(), acc.desc(), storage, storage});
+    ImageHandle normal = graph.import_image("normal", {surface.normal->handle(), surface.normal->desc(), sampled, sampled});
+    ImageDesc hdr_desc = acc.desc();
+    auto hdr = s.reference->add_resolve_pass(graph, accumulation, normal, graph.create_image("reference", hdr_desc));
+    if (!hdr) return hdr.error();
+    const std::optional<IblInputs> ibl = import_ibl(s, graph);
+    ImageHandle frame = *hdr;
+    if (ibl && s.frame.skybox) {
+        auto sky = s.renderer->add_skybox_pass(graph, frame, s.frame, *ibl);
+        if (!sky) return sky.error();
+        frame = *sky;
+    }
+    if (!s.nearest) s.nearest = std::make_unique<Sampler>(context, VK_FILTER_NEAREST, false, false, "display nearest");
+    ImageDesc ldr_desc = hdr_desc;
+    ldr_desc.format = VK_FORMAT_R8G8B8A8_UNORM;
+    auto ldr = add_tonemap_pass(graph, *s.programs, *s.nearest, frame, graph.create_image("display colour", ldr_desc),
+                                s.frame.display);
+    if (!ldr) return ldr.error();
+    graph.export_image(frame, readable);
+    graph.export_image(*ldr, readable);
+    CompiledGraph compiled = graph.compile();
+    GraphRun run(context, compiled);
+    run.submit_and_wait();
+
+    RenderedImages out;
+    out.width = s.frame.width;
+    out.height = s.frame.height;
+    out.hdr = read_floats(context, *run.transient_image(frame), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    auto ldr_bytes = read_image(context, *run.transient_image(*ldr), 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    out.ldr.resize(ldr_bytes.size());
+    std::memcpy(out.ldr.data(), ldr_bytes.data(), ldr_bytes.size());
+    for (View v : s.frame.views)
+        for (auto& [view, handle] : surface_images->views)
+            if (view == v)
+                out.views.push_back({v, read_floats(context, *surface_run.transient_image(handle),
+                                                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)});
+    out.timings = run.timings();
+    out.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+}  // namespace facet

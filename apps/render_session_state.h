@@ -1,0 +1,49 @@
+#pragma once
+// What a RenderSession holds (apps/render_job.h), shared by the files that implement it:
+// render_job.cpp (loading, baking, forward frames) and render_reference.cpp.
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "graph/compiled_graph.h"
+#include "graph/graph_run.h"
+#include "render_job.h"
+#include "shader/program_cache.h"
+
+namespace facet {
+
+class GpuScene;
+
+struct RenderSession::State {
+    Context* context = nullptr;
+    RenderJob job;
+    Scene scene;
+    std::optional<EnvironmentSource> env;
+    ShaderCompiler compiler;
+    std::unique_ptr<ProgramCache> programs;
+    std::unique_ptr<IblBake> ibl_bake;
+    CompiledGraph bake_graph;
+    std::unique_ptr<GraphRun> bake_run;
+    IblImages ibl_images;
+    IblSettings ibl_settings;
+    std::vector<PassTiming> bake_timings;
+    std::unique_ptr<GpuScene> gpu_scene;
+    std::unique_ptr<ForwardRenderer> renderer;
+    std::unique_ptr<ReferenceRenderer> reference;
+    std::unique_ptr<Sampler> nearest;
+    std::vector<float> original_texels;  // the environment before light extraction
+    FrameSettings frame;
+};
+
+inline const ResourceState readable{VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                             VK_ACCESS_2_TRANSFER_READ_BIT};
+inline const ResourceState sampled_by_fragments{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                                         VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                                         VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+
+// The baked images as imported resources of a frame's graph (nothing without IBL).
+std::optional<IblInputs> import_ibl(RenderSession::State& s, RenderGraph& graph);
+// One RGBA32F image, mip 0 / layer 0, in `layout`.
+std::vector<float> read_floats(Context& context, const Image& image, VkImageLayout layout);
+
+}  // namespace facet
