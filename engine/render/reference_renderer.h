@@ -20,7 +20,7 @@ class Context;
 class ProgramCache;
 
 struct ReferenceSettings {
-    uint32_t batch_samples = 16;  // per pixel and batch, each one BRDF and one environment sample
+    uint32_t batch_samples = 32;  // per pixel and batch, each one BRDF and one environment sample
     uint32_t min_samples = 64;
     uint32_t max_samples = 4096;
     double noise_target = 0.01;   // relative standard error of the image

@@ -124,11 +124,22 @@ float brdf_pdf(Surface s, vec3 l) {
     return s.p_specular * specular + (1.0 - s.p_specular) * NdotL / PI;
 }
 
-vec3 sample_brdf(Surface s, inout uint rng) {
+// Randomised quasi-Monte Carlo: sample i of a batch takes the i-th point of a 7-D
+// Kronecker sequence (Roberts 2018: alpha_k = 1 / phi^k, phi^8 = phi + 1), shifted by a
+// random offset per pixel and batch (Cranley-Patterson). Each batch stays an unbiased,
+// independent estimate, so batch means still measure the noise; within a batch the
+// points are spread evenly, which converges faster than independent random numbers.
+const float PHI7 = 1.0905077326652577;
+float kronecker(uint i, uint dim, float shift) {
+    float alpha = 1.0 / pow(PHI7, float(dim + 1u));
+    return fract(shift + float(i + 1u) * alpha);
+}
+
+vec3 sample_brdf(Surface s, vec3 u) {
     vec3 up = abs(s.n.y) < 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
     vec3 t = normalize(cross(up, s.n)), b = cross(s.n, t);
-    float u1 = random(rng), u2 = random(rng);
-    if (random(rng) < s.p_specular) {
+    float u1 = u.x, u2 = u.y;
+    if (u.z < s.p_specular) {
         float alpha = max(s.roughness * s.roughness, MIN_ALPHA);
         float cos_h = sqrt((1.0 - u1) / (1.0 + (alpha * alpha - 1.0) * u1));
         float sin_h = sqrt(max(0.0, 1.0 - cos_h * cos_h));
@@ -139,11 +150,11 @@ vec3 sample_brdf(Surface s, inout uint rng) {
     return t * (r * cos(2.0 * PI * u2)) + b * (r * sin(2.0 * PI * u2)) + s.n * sqrt(max(0.0, 1.0 - u1));
 }
 
-vec3 sample_environment(inout uint rng, out float pdf) {
+vec3 sample_environment(vec4 u, out float pdf) {
     uint W = params.env.x, H = params.env.y;
-    uint y = search(0u, H, random(rng));
-    uint x = search(H + y * W, W, random(rng));
-    vec3 d = texel_direction(x, y, random(rng), random(rng));
+    uint y = search(0u, H, u.x);
+    uint x = search(H + y * W, W, u.y);
+    vec3 d = texel_direction(x, y, u.z, u.w);
     pdf = distribution[H + H * W + y * W + x] / texel_solid_angle(y);
     return d;
 }
@@ -217,10 +228,12 @@ void main() {
     vec3 p = position.xyz;
 
     uint rng = hash(uint(pixel.x) * 1973u + uint(pixel.y) * 9277u + params.batch.y * 26699u);
+    float shift[7];
+    for (uint d = 0u; d < 7u; ++d) shift[d] = random(rng);
     bool has_env = params.env.x > 0u;
     for (uint i = 0u; i < count && has_env; ++i) {
         // BRDF sample.
-        vec3 l = sample_brdf(s, rng);
+        vec3 l = sample_brdf(s, vec3(kronecker(i, 0u, shift[0]), kronecker(i, 1u, shift[1]), kronecker(i, 2u, shift[2])));
         float pb = brdf_pdf(s, l);
         if (pb > 0.0) {
             float pe = env_pdf(l);
@@ -228,7 +241,8 @@ void main() {
         }
         // Environment sample.
         float pe;
-        l = sample_environment(rng, pe);
+        l = sample_environment(vec4(kronecker(i, 3u, shift[3]), kronecker(i, 4u, shift[4]), kronecker(i, 5u, shift[5]),
+                                    kronecker(i, 6u, shift[6])), pe);
         if (pe > 0.0 && dot(s.n, l) > 0.0) {
             float pb2 = brdf_pdf(s, l);
             batch_sum += brdf(s, l, k) * env_radiance(l) * dot(s.n, l) / (pb2 + pe);
