@@ -1,7 +1,9 @@
 #pragma once
 // A small, strict command-line parser shared by the programs: unknown options, missing
 // values and malformed numbers are errors that name the option.
+#include <cstdio>
 #include <map>
+#include <stdexcept>
 #include <optional>
 #include <string>
 #include <vector>
@@ -44,6 +46,27 @@ private:
     std::string program_, usage_, description_;
     std::vector<OptionSpec> options_;
 };
+
+// A program's main: `parse` returns the options (or nothing after --help/--version) and
+// throws std::invalid_argument for bad usage (exit 2); `run` does the work and throws
+// anything else for failures (exit 1). Messages read "PROGRAM: error: reason".
+template <class Parse, class Run>
+int run_program(const char* program, Parse parse, Run run) {
+    decltype(parse()) options;
+    try {
+        options = parse();
+        if (!options) return 0;
+    } catch (const std::invalid_argument& e) {
+        std::fprintf(stderr, "%s: error: %s\n", program, e.what());
+        return 2;
+    }
+    try {
+        return run(*options);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: error: %s\n", program, e.what());
+        return 1;
+    }
+}
 
 // Parses a whole string as a number; throws std::invalid_argument naming `what`.
 int parse_int(const std::string& text, const std::string& what, int min, int max);

@@ -295,18 +295,5 @@ int bake(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::optional<Options> options;
-    try {
-        options = parse(argc, argv);
-        if (!options) return 0;
-    } catch (const std::invalid_argument& e) {
-        std::fprintf(stderr, "%s: error: %s\n", program, e.what());
-        return 2;
-    }
-    try {
-        return bake(*options);
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "%s: error: %s\n", program, e.what());
-        return 1;
-    }
+    return facet::cli::run_program(program, [&] { return parse(argc, argv); }, bake);
 }

@@ -14,6 +14,7 @@
 #include "io/image_io.h"
 #include "io/json_writer.h"
 #include "render_job.h"
+#include "render_options.h"
 #include "scene/builtin_scenes.h"
 #include "scene/material_presets.h"
 
@@ -41,51 +42,15 @@ cli::Parser make_parser() {
                       "a .exr is\nlinear radiance with the exposure applied. NAME.json beside it records the camera,\n"
                       "inputs and their hashes so the image can be reproduced.");
     p.option("--out", "FILE", "output image, .png or .exr (required)")
-        .option("--model", "PATH|builtin:NAME", "model to render (default builtin:spheres)")
-        .option("--env", "PATH|builtin:NAME|none", "environment for image-based lighting (default builtin:sky)")
-        .option("--width", "W", "image width (default 1280)")
-        .option("--height", "H", "image height (default 720)")
-        .option("--camera", "orbit:THETA,PHI,RADIUS|gltf",
-                "orbit the target (degrees, metres) or use the file's first camera (default: frame the bounds)")
-        .option("--target", "X,Y,Z", "point the camera looks at (default: centre of the bounds)")
-        .option("--fov", "DEG", "vertical field of view (default 45)")
-        .option("--exposure", "E", "exposure multiplier (default 1)")
-        .option("--tonemap", "OP", "reinhard (default), exposure, aces, neutral, none")
-        .option("--gamma", "G", "encode with x^(1/G) instead of the sRGB curve")
-        .option("--preset", "NAME", "override every material: " + material_preset_names())
-        .repeatable("--light", "SPEC",
-                    "add a light (repeatable): 'directional dir=X,Y,Z [color=R,G,B] [intensity=LUX]',\n"
-                    "                          'point pos=X,Y,Z [intensity=CD] [range=M]', 'spot pos=... dir=...\n"
-                    "                          [inner=DEG] [outer=DEG]'")
-        .option("--aov", "LIST", "also write NAME.<view>.exr for each view: all or " + view_names())
-        .flag("--no-skybox", "black background instead of the environment")
-        .option("--samples", "N", "MSAA samples: 1, 2, 4 (default) or 8")
-        .flag("--height-correlated", "glTF's height-correlated Smith term for lights (default Schlick-GGX)")
-        .flag("--extract-lights", "take suns and lamps out of the environment and shade them as disk lights\n"
-                                  "                          with the full BRDF (the rest goes through the split sum)")
-        .flag("--multiscatter", "energy compensation for multiple scattering (Kulla-Conty; needs --env)")
-        .option("--specular-dir", "mirror|dominant",
-                "IBL specular lookup along R (default) or bent towards n for rough lobes (Frostbite)")
-        .option("--ibl-intensity", "S", "scale of the image-based lighting (default 1)")
-        .option("--env-width", "N", "width of a built-in environment (default 1024)")
-        .option("--ibl-size", "N", "cube face size of the bake (default: environment height / 2)")
-        .option("--ibl-samples", "N", "GGX samples per texel for smooth specular levels (default 1024)")
-        .flag("--sanitize", "replace NaN, Inf and negative environment texels with 0 instead of failing")
-        .flag("--reference", "ground truth instead of the split sum: Monte Carlo over the whole environment\n"
-                             "                          (BRDF + environment sampling, MIS) until the noise target")
+        .option("--aov", "LIST", "also write NAME.<view>.exr for each view: all or " + view_names());
+    add_render_options(p);
+    p.flag("--reference", "ground truth instead of the split sum: Monte Carlo over the whole environment\n"
+                          "                          (BRDF + environment sampling, MIS) until the noise target")
         .option("--reference-noise", "X", "relative standard error to reach (default 0.01)")
         .option("--reference-samples", "N", "most samples per pixel (default 4096)")
         .option("--device", "NAME|INDEX", "Vulkan device (default: FACET_DEVICE, a GPU, else lavapipe)")
         .flag("--validation", "enable the Khronos validation layer");
     return p;
-}
-
-float number(const cli::Parsed& a, const char* name, float min, float max) {
-    const double v = cli::parse_double(a.get(name), name);
-    if (v < min || v > max)
-        throw std::invalid_argument(std::string(name) + ": " + a.get(name) + " is outside " + std::to_string(min) +
-                                    ".." + std::to_string(max));
-    return float(v);
 }
 
 std::optional<Options> parse(int argc, char** argv) {
@@ -100,80 +65,15 @@ std::optional<Options> parse(int argc, char** argv) {
     const std::string ext = fs::path(o.out).extension().string();
     if (ext != ".png" && ext != ".exr")
         throw std::invalid_argument("--out " + o.out + ": the name must end in .png or .exr");
-    j.model = a.get("--model", j.model);
-    j.env = a.get("--env", j.env);
-    if (a.has("--width")) j.frame.width = uint32_t(cli::parse_int(a.get("--width"), "--width", 1, 16384));
-    if (a.has("--height")) j.frame.height = uint32_t(cli::parse_int(a.get("--height"), "--height", 1, 16384));
-    if (a.has("--camera")) {
-        const std::string c = a.get("--camera");
-        std::array<float, 3> orbit{};
-        char extra;
-        if (c == "gltf") j.gltf_camera = true;
-        else if (std::sscanf(c.c_str(), "orbit:%f,%f,%f%c", &orbit[0], &orbit[1], &orbit[2], &extra) == 3 &&
-                 std::isfinite(orbit[0]) && std::isfinite(orbit[1]) && orbit[2] > 0 && std::isfinite(orbit[2]))
-            j.orbit = orbit;
-        else
-            throw std::invalid_argument("--camera: expected orbit:THETA,PHI,RADIUS (radius > 0) or gltf, got '" + c + "'");
-    }
-    if (a.has("--target")) {
-        glm::vec3 t;
-        char extra;
-        if (std::sscanf(a.get("--target").c_str(), "%f,%f,%f%c", &t.x, &t.y, &t.z, &extra) != 3)
-            throw std::invalid_argument("--target: expected X,Y,Z, got '" + a.get("--target") + "'");
-        j.target = t;
-    }
-    if (a.has("--fov")) j.fov_deg = number(a, "--fov", 1.0f, 170.0f);
-    if (a.has("--exposure")) j.frame.display.exposure = number(a, "--exposure", 1e-6f, 1e6f);
-    if (a.has("--tonemap")) {
-        auto t = parse_tonemap(a.get("--tonemap"));
-        if (!t) throw std::invalid_argument("--tonemap: unknown operator '" + a.get("--tonemap") +
-                                            "' (reinhard, exposure, aces, neutral, none)");
-        j.frame.display.tonemap = *t;
-    }
-    if (a.has("--gamma")) j.frame.display.gamma = number(a, "--gamma", 0.1f, 10.0f);
-    if (a.has("--preset")) {
-        if (!find_material_preset(a.get("--preset")))
-            throw std::invalid_argument("--preset: unknown preset '" + a.get("--preset") + "' (" +
-                                        material_preset_names() + ")");
-        j.preset = a.get("--preset");
-    }
-    for (const std::string& spec : a.all("--light")) {
-        auto light = parse_light(spec);
-        if (!light) throw std::invalid_argument(light.error().message);
-        j.extra_lights.push_back(*light);
-    }
     if (a.has("--aov")) {
         std::string error;
         auto views = parse_view_list(a.get("--aov"), &error);
         if (!views) throw std::invalid_argument("--aov: " + error);
         j.frame.views = *views;
     }
-    j.frame.skybox = !a.has("--no-skybox");
-    if (a.has("--samples")) {
-        const int n = cli::parse_int(a.get("--samples"), "--samples", 1, 8);
-        if (n != 1 && n != 2 && n != 4 && n != 8) throw std::invalid_argument("--samples must be 1, 2, 4 or 8");
-        j.frame.samples = uint32_t(n);
-    }
-    j.frame.height_correlated = a.has("--height-correlated");
-    j.frame.multiscatter = a.has("--multiscatter");
-    j.extract_lights = a.has("--extract-lights");
-    if (a.has("--specular-dir")) {
-        const std::string d = a.get("--specular-dir");
-        if (d != "mirror" && d != "dominant")
-            throw std::invalid_argument("--specular-dir: expected mirror or dominant, got '" + d + "'");
-        j.frame.dominant_direction = d == "dominant";
-    }
-    if (a.has("--ibl-intensity")) j.ibl_intensity = number(a, "--ibl-intensity", 0.0f, 1e6f);
-    if (a.has("--env-width")) {
-        j.env_width = uint32_t(cli::parse_int(a.get("--env-width"), "--env-width", 2, 16384));
-        if (j.env_width % 2) throw std::invalid_argument("--env-width must be even");
-    }
-    if (a.has("--ibl-size")) j.ibl.cube_size = uint32_t(cli::parse_int(a.get("--ibl-size"), "--ibl-size", 1, 8192));
-    if (a.has("--ibl-samples"))
-        j.ibl.specular.sample_count = uint32_t(cli::parse_int(a.get("--ibl-samples"), "--ibl-samples", 1, 1 << 20));
-    j.sanitize = a.has("--sanitize");
+    parse_render_options(a, j);
     o.reference = a.has("--reference");
-    if (a.has("--reference-noise")) o.reference_settings.noise_target = number(a, "--reference-noise", 1e-4f, 1.0f);
+    if (a.has("--reference-noise")) o.reference_settings.noise_target = number_option(a, "--reference-noise", 1e-4f, 1.0f);
     if (a.has("--reference-samples"))
         o.reference_settings.max_samples =
             uint32_t(cli::parse_int(a.get("--reference-samples"), "--reference-samples", 1, 1 << 20));
@@ -312,18 +212,5 @@ int render(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::optional<Options> options;
-    try {
-        options = parse(argc, argv);
-        if (!options) return 0;
-    } catch (const std::invalid_argument& e) {
-        std::fprintf(stderr, "%s: error: %s\n", program, e.what());
-        return 2;
-    }
-    try {
-        return render(*options);
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "%s: error: %s\n", program, e.what());
-        return 1;
-    }
+    return facet::cli::run_program(program, [&] { return parse(argc, argv); }, render);
 }

@@ -69,6 +69,13 @@ public:
                                             const ReferenceRenderer::Progress& progress = {},
                                             ReferenceStats* stats = nullptr);
 
+    // The frame's passes (forward, skybox, tone mapping, views) in a caller's graph, with
+    // the baked images imported, for hosts that add their own passes after them (the
+    // viewer's copy to the swapchain). The graph must run before the next call.
+    Result<FrameImages> add_frame_passes(RenderGraph& graph);
+    // Camera, size and display for the next frames.
+    FrameSettings& frame_settings();
+
     const Scene& scene() const;
     const CameraView& camera() const;
     const FrameSettings& frame() const;

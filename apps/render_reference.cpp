@@ -38,6 +38,13 @@ std::vector<float> read_floats(Context& context, const Image& image, VkImageLayo
     return values;
 }
 
+Result<FrameImages> RenderSession::add_frame_passes(RenderGraph& graph) {
+    State& s = *state_;
+    return s.renderer->add_passes(graph, *s.gpu_scene, s.frame, import_ibl(s, graph));
+}
+
+FrameSettings& RenderSession::frame_settings() { return state_->frame; }
+
 Result<RenderedImages> RenderSession::render_reference(const ReferenceSettings& settings,
                                                        const ReferenceRenderer::Progress& progress,
                                                        ReferenceStats* stats_out) {

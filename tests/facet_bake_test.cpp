@@ -1,6 +1,8 @@
 // facet-bake as a user runs it: help, bad arguments, bad outputs, and a real bake.
 #include <gtest/gtest.h>
 
+#include "support/process.h"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -20,23 +22,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Ran {
-    int status = -1;
-    std::string output;  // stdout and stderr together
-};
+using facet::test::Ran;
 
-Ran run(const std::string& args) {
-    Ran r;
-    const std::string command = std::string(FACET_BAKE_PATH) + " " + args + " 2>&1";
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe) return r;
-    std::array<char, 4096> buf;
-    size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
-    const int raw = pclose(pipe);
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    return r;
-}
+Ran run(const std::string& args) { return facet::test::run_command(std::string(FACET_BAKE_PATH) + " " + args); }
 
 struct TempDir {
     fs::path path = fs::temp_directory_path() / ("facet_bake_test_" + std::to_string(::getpid()));

@@ -1,6 +1,8 @@
 // facet-bench runs and reports (its figures are measurements, never checked here).
 #include <gtest/gtest.h>
 
+#include "support/process.h"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -12,14 +14,8 @@
 namespace {
 
 std::pair<int, std::string> run(const std::string& args) {
-    const std::string command = std::string(FACET_BENCH_PATH) + " " + args + " 2>&1";
-    FILE* pipe = popen(command.c_str(), "r");
-    std::string out;
-    std::array<char, 4096> buf;
-    size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
-    const int raw = pclose(pipe);
-    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, out};
+    const facet::test::Ran r = facet::test::run_command(std::string(FACET_BENCH_PATH) + " " + args);
+    return {r.status, r.output};
 }
 
 TEST(FacetBench, ReportsMediansOfPassesAndWholeBake) {

@@ -8,6 +8,8 @@
 // then look at the new PNGs and commit them.
 #include <gtest/gtest.h>
 
+#include "support/process.h"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -26,23 +28,9 @@ namespace fs = std::filesystem;
 
 const std::string data = FACET_SHARED_DATA_DIR;
 
-struct Ran {
-    int status = -1;
-    std::string output;
-};
+using facet::test::Ran;
 
-Ran run(const std::string& args) {
-    Ran r;
-    const std::string command = std::string(FACET_RENDER_PATH) + " " + args + " 2>&1";
-    FILE* pipe = popen(command.c_str(), "r");
-    if (!pipe) return r;
-    std::array<char, 4096> buf;
-    size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
-    const int raw = pclose(pipe);
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    return r;
-}
+Ran run(const std::string& args) { return facet::test::run_command(std::string(FACET_RENDER_PATH) + " " + args); }
 
 struct TempDir {
     fs::path path = fs::temp_directory_path() / ("facet_render_test_" + std::to_string(::getpid()) + "_" +

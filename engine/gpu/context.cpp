@@ -182,6 +182,11 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
         validation && options.sync_validation &&
         has_instance_extension(validation_layer, VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
     if (validation_features) extensions.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
+    for (const std::string& e : options.instance_extensions) {
+        if (!has_instance_extension(nullptr, e.c_str()))
+            return Error{"the Vulkan instance extension " + e + " is not available", VK_ERROR_EXTENSION_NOT_PRESENT};
+        extensions.push_back(e.c_str());
+    }
 
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     app.pApplicationName = options.app_name.c_str();
@@ -257,13 +262,19 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     queue_info.queueFamilyIndex = c.queue_family_;
     queue_info.queueCount = 1;
     queue_info.pQueuePriorities = &priority;
-    const char* device_extensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    std::vector<const char*> device_extensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    for (const std::string& e : options.device_extensions) {
+        if (!has_device_extension(c.physical_device_, e.c_str()))
+            return Error{"the Vulkan device extension " + e + " is not available on " + c.device_name(),
+                         VK_ERROR_EXTENSION_NOT_PRESENT};
+        device_extensions.push_back(e.c_str());
+    }
     VkDeviceCreateInfo device_info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     device_info.pNext = &enabled;
     device_info.queueCreateInfoCount = 1;
     device_info.pQueueCreateInfos = &queue_info;
-    device_info.enabledExtensionCount = 1;
-    device_info.ppEnabledExtensionNames = device_extensions;
+    device_info.enabledExtensionCount = static_cast<uint32_t>(device_extensions.size());
+    device_info.ppEnabledExtensionNames = device_extensions.data();
     if (VkResult r = vkCreateDevice(c.physical_device_, &device_info, nullptr, &c.device_);
         r != VK_SUCCESS)
         return Error{std::string("vkCreateDevice failed: ") + vk_result_name(r), r};

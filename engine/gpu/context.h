@@ -7,6 +7,7 @@
 #include <mutex>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
@@ -26,6 +27,10 @@ struct ContextOptions {
     // else the first CPU device (lavapipe).
     std::string device;
     std::string app_name = "facet";
+    // More extensions, e.g. a window system's surface extensions (instance) and
+    // VK_KHR_swapchain (device); a missing one is an error naming it.
+    std::vector<std::string> instance_extensions;
+    std::vector<std::string> device_extensions;
 
     static bool default_validation();
 };

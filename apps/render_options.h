@@ -1,0 +1,15 @@
+#pragma once
+// The options facet-render and facet-viewer share: model, environment, camera, display,
+// lights, presets and shading switches, parsed into a RenderJob.
+#include "cli.h"
+#include "render_job.h"
+
+namespace facet {
+
+void add_render_options(cli::Parser& parser);
+// Throws std::invalid_argument naming the option.
+void parse_render_options(const cli::Parsed& args, RenderJob& job);
+// A number option within [min, max]; throws std::invalid_argument naming it.
+float number_option(const cli::Parsed& args, const char* name, float min, float max);
+
+}  // namespace facet

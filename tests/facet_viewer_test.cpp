@@ -1,0 +1,82 @@
+// facet-viewer under Xvfb on lavapipe, scripted: its screenshot matches facet-render's
+// image for the same settings, the run is validation-clean (ctest sets FACET_VALIDATION=1)
+// and it exits cleanly; bad arguments are clear errors.
+#include <gtest/gtest.h>
+
+#include "support/process.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include <OpenImageIO/imageio.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+using facet::test::Ran;
+
+Ran run(const std::string& command_line) { return facet::test::run_command(command_line); }
+
+std::vector<float> pixels(const std::string& path, int* w, int* h) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) return {};
+    *w = in->spec().width;
+    *h = in->spec().height;
+    std::vector<float> v(size_t(*w) * *h * in->spec().nchannels);
+    in->read_image(0, 0, 0, in->spec().nchannels, OIIO::TypeDesc::FLOAT, v.data());
+    return v;
+}
+
+struct TempDir {
+    fs::path path = fs::temp_directory_path() / ("facet_viewer_test_" + std::to_string(::getpid()));
+    TempDir() { fs::create_directories(path); }
+    ~TempDir() { fs::remove_all(path); }
+};
+
+const std::string viewer = std::string("xvfb-run -a -s '-screen 0 640x480x24' ") + FACET_VIEWER_PATH;
+
+TEST(FacetViewer, ScreenshotMatchesFacetRender) {
+    TempDir dir;
+    for (const std::string scene : {"--model builtin:spheres --env builtin:sky --env-width 256",
+                                    "--model builtin:sphere --preset gold --env builtin:sky --env-width 256 "
+                                    "--tonemap aces --light 'point pos=2,2,3 intensity=30'"}) {
+        const std::string settings = scene + " --width 160 --height 120";
+        Ran shown = run(viewer + " " + settings + " --frames 3 --screenshot " + (dir.path / "viewer.png").string());
+        ASSERT_EQ(shown.status, 0) << shown.output;
+        EXPECT_EQ(shown.output.find("Validation"), std::string::npos) << shown.output;
+        EXPECT_NE(shown.output.find("rendered 3 frames"), std::string::npos) << shown.output;
+        Ran rendered = run(std::string(FACET_RENDER_PATH) + " " + settings + " --out " +
+                           (dir.path / "render.png").string());
+        ASSERT_EQ(rendered.status, 0) << rendered.output;
+        int w1 = 0, h1 = 0, w2 = 0, h2 = 0;
+        const auto a = pixels((dir.path / "viewer.png").string(), &w1, &h1);
+        const auto b = pixels((dir.path / "render.png").string(), &w2, &h2);
+        ASSERT_EQ(w1, 160);
+        ASSERT_EQ(h1, 120);
+        ASSERT_EQ(a.size(), b.size());
+        double diff = 0;
+        for (size_t i = 0; i < a.size(); ++i) diff += std::abs(a[i] - b[i]);
+        EXPECT_LT(diff / double(a.size()) * 255.0, 0.5) << "mean difference in 8-bit levels: " << scene;
+    }
+}
+
+TEST(FacetViewer, HelpAndBadArguments) {
+    Ran help = run(std::string(FACET_VIEWER_PATH) + " --help");
+    EXPECT_EQ(help.status, 0);
+    EXPECT_NE(help.output.find("Usage: facet-viewer"), std::string::npos) << help.output;
+    EXPECT_NE(help.output.find("--screenshot"), std::string::npos);
+    Ran bad = run(std::string(FACET_VIEWER_PATH) + " --frames zero");
+    EXPECT_EQ(bad.status, 2);
+    EXPECT_NE(bad.output.find("--frames"), std::string::npos) << bad.output;
+    Ran model = run(viewer + " --model builtin:nothing --frames 1");
+    EXPECT_EQ(model.status, 1);
+    EXPECT_NE(model.output.find("builtin:nothing"), std::string::npos) << model.output;
+}
+
+}  // namespace
