@@ -1,16 +1,22 @@
 // facet-viewer: the thesis' sample program on Vulkan. A GLFW window shows the forward
-// PBR frame of a model under an environment; WASD + mouse fly the camera (Tab: orbit
-// around the target instead), R frames the model again, F12 saves a screenshot. Scripted
-// use (CI, tests): --frames N renders N frames and exits, --screenshot FILE saves the
-// last one. The swapchain image is imported into each frame's render graph; the display
-// image is copied into it by a transfer pass.
+// PBR frame of a model under an environment, with Dear ImGui panels for the model, its
+// material preset, the environment, the display, the component view and pass times;
+// WASD + mouse fly the camera (Tab: orbit around the target instead), R frames the model
+// again, F12 saves a screenshot. Scripted use (CI, tests): --script runs commands,
+// --frames N / --screenshot FILE are shorthands. The swapchain image is imported into
+// each frame's render graph: the display image is copied into it, then the panels drawn.
+#include <chrono>
 #include <cmath>
+#include <functional>
+#include <memory>
 #include <cstdio>
 #include <cstring>
 #include <optional>
 
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <imgui.h>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "cli.h"
@@ -22,7 +28,13 @@
 #include "render/camera.h"
 #include "render_job.h"
 #include "render_options.h"
+#include "render/tonemap.h"
+#include "scene/material_presets.h"
+#include "shader/program_cache.h"
 #include "swapchain.h"
+#include "viewer_panels.h"
+#include "viewer_support.h"
+#include "viewer_ui.h"
 
 namespace {
 
@@ -32,9 +44,38 @@ constexpr const char* program = "facet-viewer";
 
 struct Options {
     RenderJob job;
-    int frames = 0;  // 0: until the window closes
-    std::string screenshot, device;
+    std::vector<std::string> script;  // commands (see --script); empty: interactive
+    std::string device;
 };
+
+// Validates one script command before anything starts; throws naming it.
+void check_command(const std::string& command) {
+    const std::string verb = command.substr(0, command.find(' '));
+    const std::string arg = command.find(' ') == std::string::npos ? "" : command.substr(command.find(' ') + 1);
+    auto bad = [&](const std::string& why) { throw std::invalid_argument("--script: '" + command + "': " + why); };
+    if (verb == "frames") cli::parse_int(arg, "--script frames", 1, 1000000);
+    else if (verb == "view") {
+        if (!parse_view(arg)) bad("unknown view (final," + view_names() + ")");
+    } else if (verb == "size") {
+        unsigned w = 0, h = 0;
+        char extra;
+        if (std::sscanf(arg.c_str(), "%ux%u%c", &w, &h, &extra) != 2 || !w || !h || w > 8192 || h > 8192)
+            bad("expected WxH");
+    } else if (verb == "tonemap") {
+        if (!parse_tonemap(arg)) bad("unknown operator");
+    } else if (verb == "exposure") {
+        cli::parse_double(arg, "--script exposure");
+    } else if (verb == "skybox") {
+        if (arg != "on" && arg != "off") bad("expected on or off");
+    } else if (verb == "preset") {
+        if (!find_material_preset(arg)) bad("unknown preset (" + material_preset_names() + ")");
+    } else if (verb == "screenshot") {
+        if (arg.size() < 5) bad("expected a .png or .exr file name");
+    } else if (verb != "model" && verb != "env") {
+        bad("unknown command");
+    }
+    if (arg.empty()) bad("needs a value");
+}
 
 std::optional<Options> parse(int argc, char** argv) {
     cli::Parser p(program, "[--model PATH|builtin:NAME] [--env PATH|builtin:NAME|none] [options]",
@@ -44,6 +85,9 @@ std::optional<Options> parse(int argc, char** argv) {
     add_render_options(p);
     p.option("--frames", "N", "render N frames, then exit (default: until the window closes)")
         .option("--screenshot", "FILE", "save the last frame as FILE (.png tone-mapped, .exr linear)")
+        .option("--script", "CMDS", "run commands separated by ';', then exit: model M, env E, preset P,\n"
+                                    "                          view V, size WxH, exposure E, tonemap OP, skybox on|off,\n"
+                                    "                          frames N, screenshot FILE")
         .option("--device", "NAME|INDEX", "Vulkan device (default: FACET_DEVICE, a GPU, else lavapipe)");
     cli::Parsed a = p.parse(argc, argv);
     if (p.answered_help_or_version(a, FACET_VERSION)) return std::nullopt;
@@ -52,95 +96,46 @@ std::optional<Options> parse(int argc, char** argv) {
     o.job.frame.width = 960;
     o.job.frame.height = 540;
     parse_render_options(a, o.job);
-    if (a.has("--frames")) o.frames = cli::parse_int(a.get("--frames"), "--frames", 1, 1000000);
-    o.screenshot = a.get("--screenshot");
-    if (!o.screenshot.empty() && o.screenshot.size() < 5)
-        throw std::invalid_argument("--screenshot: expected a .png or .exr file name");
+    if (a.has("--script")) {
+        std::string item;
+        for (char ch : a.get("--script") + ";") {
+            if (ch != ';') {
+                item += ch;
+                continue;
+            }
+            const size_t first = item.find_first_not_of(' '), last = item.find_last_not_of(' ');
+            if (first != std::string::npos) o.script.push_back(item.substr(first, last - first + 1));
+            item.clear();
+        }
+        for (const std::string& command : o.script) check_command(command);
+    }
+    if (a.has("--frames"))
+        o.script.push_back("frames " + std::to_string(cli::parse_int(a.get("--frames"), "--frames", 1, 1000000)));
+    if (a.has("--screenshot")) {
+        if (o.script.empty()) o.script.push_back("frames 1");
+        o.script.push_back("screenshot " + a.get("--screenshot"));
+    }
     o.device = a.get("--device");
     return o;
 }
 
-// Fly camera (yaw/pitch around the position) or orbit camera (around the target).
-struct CameraControl {
-    CameraView view, home;
-    bool orbit = false;
-    double last_x = 0, last_y = 0;
-    bool dragging = false;
-
-    void update(GLFWwindow* window, double seconds) {
-        glm::vec3 forward = glm::normalize(view.target - view.position);
-        const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
-        const float speed = 0.5f * glm::length(home.target - home.position) * float(seconds);
-        glm::vec3 move(0.0f);
-        if (glfwGetKey(window, GLFW_KEY_W) == GLFW_PRESS) move += forward;
-        if (glfwGetKey(window, GLFW_KEY_S) == GLFW_PRESS) move -= forward;
-        if (glfwGetKey(window, GLFW_KEY_D) == GLFW_PRESS) move += right;
-        if (glfwGetKey(window, GLFW_KEY_A) == GLFW_PRESS) move -= right;
-        view.position += move * speed;
-        if (!orbit) view.target += move * speed;
-        double x, y;
-        glfwGetCursorPos(window, &x, &y);
-        const bool pressed = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
-        if (pressed && dragging) {
-            const float yaw = float(x - last_x) * -0.005f, pitch = float(y - last_y) * -0.005f;
-            const glm::vec3 pivot = orbit ? view.target : view.position;
-            glm::vec3 arm = orbit ? view.position - view.target : view.target - view.position;
-            const glm::mat4 turn = glm::rotate(glm::rotate(glm::mat4(1.0f), yaw, glm::vec3(0, 1, 0)), pitch, right);
-            arm = glm::vec3(turn * glm::vec4(arm, 0.0f));
-            if (std::abs(glm::normalize(arm).y) < 0.99f) {
-                if (orbit) view.position = pivot + arm;
-                else view.target = pivot + arm;
-            }
-        }
-        dragging = pressed;
-        last_x = x;
-        last_y = y;
+// A session for the controls' model, environment and preset; the old one (if any) is
+// kept when loading fails, and the error is shown.
+std::unique_ptr<RenderSession> open_session(Context& context, const RenderJob& base, ViewerControls& c,
+                                            const std::function<void(const std::string&)>& log) {
+    RenderJob job = base;
+    job.model = c.model;
+    job.env = c.env;
+    job.preset = c.preset.empty() ? std::nullopt : std::optional<std::string>(c.preset);
+    auto session = RenderSession::create(context, job, log);
+    if (!session) {
+        c.status = session.error().message;
+        log("error: " + c.status);
+        return nullptr;
     }
-};
-
-CameraControl* control_of(GLFWwindow* w) { return static_cast<CameraControl*>(glfwGetWindowUserPointer(w)); }
-
-struct FrameSync {
-    VkDevice device;
-    VkCommandPool pool = VK_NULL_HANDLE;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    VkSemaphore acquired = VK_NULL_HANDLE, rendered = VK_NULL_HANDLE;
-    VkFence done = VK_NULL_HANDLE;
-    explicit FrameSync(Context& c) : device(c.device()) {
-        VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-        pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-        pool_info.queueFamilyIndex = c.queue_family();
-        vk_check(vkCreateCommandPool(device, &pool_info, nullptr, &pool), "vkCreateCommandPool");
-        VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-        alloc.commandPool = pool;
-        alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-        alloc.commandBufferCount = 1;
-        vk_check(vkAllocateCommandBuffers(device, &alloc, &cmd), "vkAllocateCommandBuffers");
-        VkSemaphoreCreateInfo semaphore{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-        vk_check(vkCreateSemaphore(device, &semaphore, nullptr, &acquired), "vkCreateSemaphore");
-        vk_check(vkCreateSemaphore(device, &semaphore, nullptr, &rendered), "vkCreateSemaphore");
-        VkFenceCreateInfo fence{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-        vk_check(vkCreateFence(device, &fence, nullptr, &done), "vkCreateFence");
-    }
-    ~FrameSync() {
-        vkDestroyFence(device, done, nullptr);
-        vkDestroySemaphore(device, rendered, nullptr);
-        vkDestroySemaphore(device, acquired, nullptr);
-        vkDestroyCommandPool(device, pool, nullptr);
-    }
-};
-
-Status save(const std::string& path, uint32_t w, uint32_t h, const std::vector<std::byte>& ldr,
-            const std::vector<float>& hdr, float exposure) {
-    if (path.size() > 4 && path.substr(path.size() - 4) == ".exr") {
-        std::vector<float> exposed = hdr;
-        for (size_t i = 0; i < exposed.size(); ++i)
-            if (i % 4 != 3) exposed[i] *= exposure;
-        return write_hdr_image(path, w, h, exposed);
-    }
-    std::vector<uint8_t> bytes(ldr.size());
-    std::memcpy(bytes.data(), ldr.data(), ldr.size());
-    return write_ldr_image(path, w, h, bytes);
+    c.status.clear();
+    c.bake_passes = (*session)->bake_timings();
+    return std::move(*session);
 }
 
 int run(const Options& o) {
@@ -172,47 +167,101 @@ int run(const Options& o) {
         throw std::runtime_error(std::string("cannot create a Vulkan surface: ") + vk_result_name(r));
     int fb_w = 0, fb_h = 0;
     glfwGetFramebufferSize(window, &fb_w, &fb_h);
-    auto swapchain = Swapchain::create(context, surface, uint32_t(fb_w), uint32_t(fb_h));
-    if (!swapchain) throw std::runtime_error(swapchain.error().message);
-
+    auto created_swapchain = Swapchain::create(context, surface, uint32_t(fb_w), uint32_t(fb_h));
+    if (!created_swapchain) throw std::runtime_error(created_swapchain.error().message);
+    std::unique_ptr<Swapchain> swapchain = std::move(*created_swapchain);
     auto log = [](const std::string& line) { std::fprintf(stderr, "%s: %s\n", program, line.c_str()); };
-    RenderJob job = o.job;
-    job.frame.width = (*swapchain)->extent().width;
-    job.frame.height = (*swapchain)->extent().height;
-    auto session = RenderSession::create(context, job, log);
-    if (!session) throw std::runtime_error(session.error().message);
-    CameraControl control;
-    control.view = control.home = (*session)->camera();
-    glfwSetWindowUserPointer(window, &control);
-    glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
-        if (action != GLFW_PRESS) return;
+
+    ViewerControls controls;
+    controls.model = o.job.model;
+    controls.env = o.job.env;
+    controls.preset = o.job.preset.value_or("");
+    controls.display = o.job.frame.display;
+    controls.skybox = o.job.frame.skybox;
+    RenderJob base = o.job;
+    base.frame.width = swapchain->extent().width;
+    base.frame.height = swapchain->extent().height;
+    std::unique_ptr<RenderSession> session = open_session(context, base, controls, log);
+    if (!session) throw std::runtime_error(controls.status);
+    CameraControl camera;
+    camera.view = camera.home = session->camera();
+    glfwSetWindowUserPointer(window, &camera);
+    auto ui = std::make_unique<ViewerUi>(context, window, *swapchain);
+    glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int scancode, int action, int mods) {
+        ImGui_ImplGlfw_KeyCallback(w, key, scancode, action, mods);
+        if (action != GLFW_PRESS || ImGui::GetIO().WantCaptureKeyboard) return;
         CameraControl* c = control_of(w);
         if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(w, GLFW_TRUE);
         if (key == GLFW_KEY_TAB) c->orbit = !c->orbit;
         if (key == GLFW_KEY_R) c->view = c->home;
     });
 
+    Sampler nearest(context, VK_FILTER_NEAREST, false, false, "viewer nearest");
+    ShaderCompiler compiler;
+    ProgramCache programs(context, compiler);
     FrameSync sync(context);
+    size_t step = 0;       // next script command
+    int frames_left = 0;   // of the current "frames N"
+    std::string screenshot;
     int frame = 0;
     double last = glfwGetTime();
-    bool screenshot_key = false;
-    while (!glfwWindowShouldClose(window) && (o.frames == 0 || frame < o.frames)) {
+    while (!glfwWindowShouldClose(window)) {
+        // Script: apply commands until one asks for frames.
+        const bool scripted = !o.script.empty();
+        while (scripted && frames_left == 0 && screenshot.empty() && step < o.script.size()) {
+            const std::string& command = o.script[step++];
+            const std::string verb = command.substr(0, command.find(' '));
+            const std::string arg = command.substr(command.find(' ') + 1);
+            log("script: " + command);
+            if (verb == "frames") {
+                frames_left = std::stoi(arg);
+                // "frames N; screenshot FILE" saves the last of those N frames.
+                if (step < o.script.size() && o.script[step].rfind("screenshot ", 0) == 0)
+                    screenshot = o.script[step++].substr(11);
+            }
+            else if (verb == "screenshot") screenshot = arg;
+            else if (verb == "model") controls.model = arg, controls.reload = true;
+            else if (verb == "env") controls.env = arg, controls.reload = true;
+            else if (verb == "preset") controls.preset = arg, controls.reload = true;
+            else if (verb == "view") controls.view = *parse_view(arg);
+            else if (verb == "tonemap") controls.display.tonemap = *parse_tonemap(arg);
+            else if (verb == "exposure") controls.display.exposure = float(std::stod(arg));
+            else if (verb == "skybox") controls.skybox = arg == "on";
+            else if (verb == "size") {
+                unsigned w = 0, h = 0;
+                std::sscanf(arg.c_str(), "%ux%u", &w, &h);
+                glfwSetWindowSize(window, int(w), int(h));
+            }
+        }
+        if (scripted && frames_left == 0 && screenshot.empty() && step >= o.script.size()) break;
         glfwPollEvents();
+        if (controls.reload) {
+            controls.reload = false;
+            vkDeviceWaitIdle(context.device());
+            if (auto next = open_session(context, base, controls, log)) {
+                session = std::move(next);
+                camera.view = camera.home = session->camera();
+            } else if (scripted) {
+                throw std::runtime_error(controls.status);
+            }
+        }
         const double now = glfwGetTime();
-        control.update(window, now - last);
+        if (!ui->wants_mouse() && !ui->wants_keyboard()) camera.update(window, now - last);
         last = now;
-        screenshot_key = screenshot_key || glfwGetKey(window, GLFW_KEY_F12) == GLFW_PRESS;
+        if (!ui->wants_keyboard() && glfwGetKey(window, GLFW_KEY_F12) == GLFW_PRESS && screenshot.empty())
+            screenshot = "facet-viewer-" + std::to_string(frame) + ".png";
         glfwGetFramebufferSize(window, &fb_w, &fb_h);
         if (fb_w == 0 || fb_h == 0) continue;  // minimised
         uint32_t index = 0;
-        VkResult acquired = vkAcquireNextImageKHR(context.device(), (*swapchain)->handle(), UINT64_MAX, sync.acquired,
+        VkResult acquired = vkAcquireNextImageKHR(context.device(), swapchain->handle(), UINT64_MAX, sync.acquired,
                                                   VK_NULL_HANDLE, &index);
-        const VkExtent2D extent = (*swapchain)->extent();
+        VkExtent2D extent = swapchain->extent();
         if (acquired == VK_ERROR_OUT_OF_DATE_KHR || uint32_t(fb_w) != extent.width || uint32_t(fb_h) != extent.height) {
             // A resize: the swapchain (and any image acquired from it) is replaced.
             vkDeviceWaitIdle(context.device());
-            if (Status st = (*swapchain)->recreate(uint32_t(fb_w), uint32_t(fb_h)); !st)
+            if (Status st = swapchain->recreate(uint32_t(fb_w), uint32_t(fb_h)); !st)
                 throw std::runtime_error(st.error().message);
+            ui->rebuild(*swapchain);
             vkDestroySemaphore(context.device(), sync.acquired, nullptr);
             VkSemaphoreCreateInfo semaphore{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
             vk_check(vkCreateSemaphore(context.device(), &semaphore, nullptr, &sync.acquired), "vkCreateSemaphore");
@@ -221,44 +270,62 @@ int run(const Options& o) {
         if (acquired != VK_SUCCESS && acquired != VK_SUBOPTIMAL_KHR)
             throw std::runtime_error(std::string("vkAcquireNextImageKHR: ") + vk_result_name(acquired));
 
-        FrameSettings& settings = (*session)->frame_settings();
-        settings.camera = control.view;
+        ui->begin_frame();
+        draw_panels(controls);
+        FrameSettings& settings = session->frame_settings();
+        settings.camera = camera.view;
         settings.width = extent.width;
         settings.height = extent.height;
+        settings.display = controls.display;
+        settings.skybox = controls.skybox;
+        settings.views.clear();
+        if (controls.view != View::final_color) settings.views = {controls.view};
         RenderGraph graph;
-        auto images = (*session)->add_frame_passes(graph);
+        auto images = session->add_frame_passes(graph);
         if (!images) throw std::runtime_error(images.error().message);
+        ImageHandle shown = images->ldr;
+        if (controls.view != View::final_color) {
+            // A component view, shown through the same display transform.
+            ImageDesc desc;
+            desc.format = VK_FORMAT_R8G8B8A8_UNORM;
+            desc.width = extent.width;
+            desc.height = extent.height;
+            auto mapped = add_tonemap_pass(graph, programs, nearest, images->views.at(0).second,
+                                           graph.create_image("view display", desc), controls.display);
+            if (!mapped) throw std::runtime_error(mapped.error().message);
+            shown = *mapped;
+        }
         ImageDesc swap_desc;
-        swap_desc.format = (*swapchain)->format();
+        swap_desc.format = swapchain->format();
         swap_desc.width = extent.width;
         swap_desc.height = extent.height;
         // The semaphore wait covers every stage, so the graph may start from any of them.
         ImageHandle target = graph.import_image(
-            "swapchain image", {(*swapchain)->images()[index], swap_desc,
+            "swapchain image", {swapchain->images()[index], swap_desc,
                                 {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_NONE},
                                 {VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
                                  VK_ACCESS_2_NONE}});
-        const ImageHandle ldr = images->ldr;
         graph.add_transfer_pass("copy to the window", [&](PassBuilder& b) {
-            b.copy_from(ldr);
+            b.copy_from(shown);
             target = b.copy_to(target);
-        }, [ldr, target, extent](PassContext& pc) {
+        }, [shown, target, extent](PassContext& pc) {
             VkImageBlit blit{};
             blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
             blit.srcOffsets[1] = {int32_t(extent.width), int32_t(extent.height), 1};
             blit.dstSubresource = blit.srcSubresource;
             blit.dstOffsets[1] = blit.srcOffsets[1];
-            vkCmdBlitImage(pc.cmd(), pc.image(ldr), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, pc.image(target),
+            vkCmdBlitImage(pc.cmd(), pc.image(shown), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, pc.image(target),
                            VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
         });
-        const bool last_frame = o.frames != 0 && frame + 1 == o.frames;
-        const bool capture = (last_frame && !o.screenshot.empty()) || screenshot_key;
+        target = ui->add_pass(graph, target, index);
+        const bool capture = !screenshot.empty() && (frames_left <= 1);
         const ResourceState readable{VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                                      VK_ACCESS_2_TRANSFER_READ_BIT};
         if (capture) {
-            graph.export_image(ldr, readable);
+            graph.export_image(shown, readable);
             graph.export_image(images->hdr, readable);
         }
+        const auto frame_start = std::chrono::steady_clock::now();
         CompiledGraph compiled = graph.compile();
         GraphRun run(context, compiled);
         vk_check(vkResetCommandBuffer(sync.cmd, 0), "vkResetCommandBuffer");
@@ -287,7 +354,7 @@ int run(const Options& o) {
         present.waitSemaphoreCount = 1;
         present.pWaitSemaphores = &sync.rendered;
         present.swapchainCount = 1;
-        const VkSwapchainKHR handle = (*swapchain)->handle();
+        const VkSwapchainKHR handle = swapchain->handle();
         present.pSwapchains = &handle;
         present.pImageIndices = &index;
         const VkResult presented = vkQueuePresentKHR(context.queue(), &present);
@@ -296,23 +363,26 @@ int run(const Options& o) {
         vk_check(vkResetFences(context.device(), 1, &sync.done), "vkResetFences");
         if (presented != VK_SUCCESS && presented != VK_SUBOPTIMAL_KHR && presented != VK_ERROR_OUT_OF_DATE_KHR)
             throw std::runtime_error(std::string("vkQueuePresentKHR: ") + vk_result_name(presented));
+        controls.frame_passes = run.timings();
+        controls.frame_ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frame_start).count();
         if (capture) {
-            const std::string path = !o.screenshot.empty() && last_frame ? o.screenshot
-                                                                        : "facet-viewer-" + std::to_string(frame) + ".png";
-            auto ldr_bytes = read_image(context, *run.transient_image(ldr), 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+            auto ldr_bytes = read_image(context, *run.transient_image(shown), 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
             auto hdr_bytes = read_image(context, *run.transient_image(images->hdr), 0, 0,
                                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
             std::vector<float> hdr(hdr_bytes.size() / 4);
             std::memcpy(hdr.data(), hdr_bytes.data(), hdr.size() * 4);
-            if (Status st = save(path, extent.width, extent.height, ldr_bytes, hdr, settings.display.exposure); !st)
+            if (Status st = save(screenshot, extent.width, extent.height, ldr_bytes, hdr, settings.display.exposure); !st)
                 throw std::runtime_error(st.error().message);
-            log("saved " + path);
-            screenshot_key = false;
+            log("saved " + screenshot);
+            screenshot.clear();
         }
+        if (frames_left > 0) --frames_left;
         ++frame;
     }
     vkDeviceWaitIdle(context.device());
-    swapchain->reset();
+    ui.reset();
+    swapchain.reset();
     log("rendered " + std::to_string(frame) + " frames");
     return 0;
 }

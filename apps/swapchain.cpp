@@ -32,8 +32,10 @@ Status Swapchain::recreate(uint32_t width, uint32_t height) {
             f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR)
             chosen = f;
     if (chosen.format == VK_FORMAT_UNDEFINED) return Error{"the window offers no 8-bit UNORM swapchain format"};
-    if (!(caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT))
-        return Error{"the window's swapchain images cannot be copied to"};
+    const VkImageUsageFlags usage =
+        VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+    if ((caps.supportedUsageFlags & usage) != usage)
+        return Error{"the window's swapchain images cannot be copied to and drawn on"};
     VkExtent2D extent = caps.currentExtent;
     if (extent.width == UINT32_MAX) {
         extent.width = std::clamp(width, caps.minImageExtent.width, caps.maxImageExtent.width);
@@ -47,7 +49,7 @@ Status Swapchain::recreate(uint32_t width, uint32_t height) {
     info.imageColorSpace = chosen.colorSpace;
     info.imageExtent = extent;
     info.imageArrayLayers = 1;
-    info.imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    info.imageUsage = usage;  // the frame is copied in, the panels drawn over it
     info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
     info.preTransform = caps.currentTransform;
     info.compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR;
