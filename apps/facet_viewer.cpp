@@ -69,6 +69,11 @@ void check_command(const std::string& command) {
         if (arg != "on" && arg != "off") bad("expected on or off");
     } else if (verb == "preset") {
         if (!find_material_preset(arg)) bad("unknown preset (" + material_preset_names() + ")");
+    } else if (verb == "material") {
+        float v[5];
+        char extra;
+        if (std::sscanf(arg.c_str(), "%f,%f,%f,%f,%f%c", &v[0], &v[1], &v[2], &v[3], &v[4], &extra) != 5)
+            bad("expected R,G,B,METALNESS,ROUGHNESS");
     } else if (verb == "screenshot") {
         if (arg.size() < 5) bad("expected a .png or .exr file name");
     } else if (verb != "model" && verb != "env") {
@@ -87,6 +92,7 @@ std::optional<Options> parse(int argc, char** argv) {
         .option("--screenshot", "FILE", "save the last frame as FILE (.png tone-mapped, .exr linear)")
         .option("--script", "CMDS", "run commands separated by ';', then exit: model M, env E, preset P,\n"
                                     "                          view V, size WxH, exposure E, tonemap OP, skybox on|off,\n"
+                                    "                          material R,G,B,METALNESS,ROUGHNESS,\n"
                                     "                          frames N, screenshot FILE")
         .option("--device", "NAME|INDEX", "Vulkan device (default: FACET_DEVICE, a GPU, else lavapipe)");
     cli::Parsed a = p.parse(argc, argv);
@@ -119,6 +125,9 @@ std::optional<Options> parse(int argc, char** argv) {
     return o;
 }
 
+// Where dropped files go (GLFW's drop callback takes no user data beside the window's).
+ViewerControls* dropped_into = nullptr;
+
 // A session for the controls' model, environment and preset; the old one (if any) is
 // kept when loading fails, and the error is shown.
 std::unique_ptr<RenderSession> open_session(Context& context, const RenderJob& base, ViewerControls& c,
@@ -127,14 +136,18 @@ std::unique_ptr<RenderSession> open_session(Context& context, const RenderJob& b
     job.model = c.model;
     job.env = c.env;
     job.preset = c.preset.empty() ? std::nullopt : std::optional<std::string>(c.preset);
+    job.ibl.irradiance.method = c.irradiance;
+    job.ibl.specular.method = c.specular;
     auto session = RenderSession::create(context, job, log);
     if (!session) {
         c.status = session.error().message;
-        log("error: " + c.status);
         return nullptr;
     }
     c.status.clear();
     c.bake_passes = (*session)->bake_timings();
+    c.warnings = (*session)->warnings();
+    c.lights = (*session)->frame().lights;
+    c.material_changed = c.override_material;
     return std::move(*session);
 }
 
@@ -178,6 +191,9 @@ int run(const Options& o) {
     controls.preset = o.job.preset.value_or("");
     controls.display = o.job.frame.display;
     controls.skybox = o.job.frame.skybox;
+    controls.irradiance = o.job.ibl.irradiance.method;
+    controls.specular = o.job.ibl.specular.method;
+    dropped_into = &controls;
     RenderJob base = o.job;
     base.frame.width = swapchain->extent().width;
     base.frame.height = swapchain->extent().height;
@@ -196,6 +212,16 @@ int run(const Options& o) {
         if (key == GLFW_KEY_R) c->view = c->home;
     });
 
+    // Drag and drop: a glTF file becomes the model, an image the environment.
+    glfwSetDropCallback(window, [](GLFWwindow*, int count, const char** paths) {
+        for (int i = 0; i < count && dropped_into; ++i) {
+            const std::string path = paths[i];
+            const std::string ext = path.substr(path.find_last_of('.') + 1);
+            if (ext == "gltf" || ext == "glb") dropped_into->model = path;
+            else dropped_into->env = path;
+            dropped_into->reload = true;
+        }
+    });
     Sampler nearest(context, VK_FILTER_NEAREST, false, false, "viewer nearest");
     ShaderCompiler compiler;
     ProgramCache programs(context, compiler);
@@ -227,6 +253,15 @@ int run(const Options& o) {
             else if (verb == "tonemap") controls.display.tonemap = *parse_tonemap(arg);
             else if (verb == "exposure") controls.display.exposure = float(std::stod(arg));
             else if (verb == "skybox") controls.skybox = arg == "on";
+            else if (verb == "material") {
+                float r = 0, g = 0, b = 0, metal = 0, rough = 0;
+                std::sscanf(arg.c_str(), "%f,%f,%f,%f,%f", &r, &g, &b, &metal, &rough);
+                controls.override_material = true;
+                controls.albedo = glm::vec3(r, g, b);
+                controls.metallic = metal;
+                controls.roughness = rough;
+                controls.material_changed = true;
+            }
             else if (verb == "size") {
                 unsigned w = 0, h = 0;
                 std::sscanf(arg.c_str(), "%ux%u", &w, &h);
@@ -243,7 +278,18 @@ int run(const Options& o) {
                 camera.view = camera.home = session->camera();
             } else if (scripted) {
                 throw std::runtime_error(controls.status);
+            } else {
+                log("error: " + controls.status + " (the previous scene stays)");
             }
+        }
+        if (controls.material_changed) {
+            controls.material_changed = false;
+            vkDeviceWaitIdle(context.device());
+            if (controls.override_material)
+                session->override_materials(
+                    RenderSession::MaterialFactors{controls.albedo, controls.metallic, controls.roughness});
+            else
+                session->override_materials(std::nullopt);
         }
         const double now = glfwGetTime();
         if (!ui->wants_mouse() && !ui->wants_keyboard()) camera.update(window, now - last);
@@ -278,6 +324,7 @@ int run(const Options& o) {
         settings.height = extent.height;
         settings.display = controls.display;
         settings.skybox = controls.skybox;
+        settings.lights = controls.lights;
         settings.views.clear();
         if (controls.view != View::final_color) settings.views = {controls.view};
         RenderGraph graph;

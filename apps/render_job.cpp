@@ -169,11 +169,11 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
         requested.specular.min_roughness = needs.min_roughness;
         s->ibl_settings = resolved_ibl_settings(requested, *s->env);
         if (!s->env->sky)
-            for (const std::string& w : method_warnings(
-                     environment_stats(s->original_texels.empty() ? s->env->image.rgba : s->original_texels,
-                                       s->env->width, s->env->height),
-                     s->ibl_settings))
-                say("warning: " + w);
+            s->warnings = method_warnings(
+                environment_stats(s->original_texels.empty() ? s->env->image.rgba : s->original_texels,
+                                  s->env->width, s->env->height),
+                s->ibl_settings);
+        for (const std::string& w : s->warnings) say("warning: " + w);
         s->ibl_bake = std::make_unique<IblBake>(context, *s->programs);
         // With extracted lights, specular levels whose lobe is narrower than twice the
         // widest light come from the whole environment (their split sum sees the lights

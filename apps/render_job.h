@@ -75,6 +75,15 @@ public:
     Result<FrameImages> add_frame_passes(RenderGraph& graph);
     // Camera, size and display for the next frames.
     FrameSettings& frame_settings();
+    // Every material's base colour, metalness and roughness factors replaced (textures
+    // still multiply them, as in glTF), or the scene's own back (nullopt).
+    struct MaterialFactors {
+        glm::vec3 albedo{1.0f};
+        float metallic = 0.0f, roughness = 0.5f;
+    };
+    void override_materials(const std::optional<MaterialFactors>& factors);
+    // IBL methods this environment takes outside their domain (ibl/method_domain.h).
+    const std::vector<std::string>& warnings() const;
 
     const Scene& scene() const;
     const CameraView& camera() const;

@@ -45,6 +45,21 @@ Result<FrameImages> RenderSession::add_frame_passes(RenderGraph& graph) {
 
 FrameSettings& RenderSession::frame_settings() { return state_->frame; }
 
+const std::vector<std::string>& RenderSession::warnings() const { return state_->warnings; }
+
+void RenderSession::override_materials(const std::optional<MaterialFactors>& factors) {
+    State& s = *state_;
+    if (s.materials.empty()) s.materials = s.scene.materials;
+    s.scene.materials = s.materials;
+    if (factors)
+        for (Material& m : s.scene.materials) {
+            m.base_color = glm::vec4(factors->albedo, m.base_color.a);
+            m.metallic = factors->metallic;
+            m.roughness = factors->roughness;
+        }
+    s.gpu_scene->update_materials(s.scene.materials);
+}
+
 Result<RenderedImages> RenderSession::render_reference(const ReferenceSettings& settings,
                                                        const ReferenceRenderer::Progress& progress,
                                                        ReferenceStats* stats_out) {

@@ -32,6 +32,8 @@ struct RenderSession::State {
     std::unique_ptr<ReferenceRenderer> reference;
     std::unique_ptr<Sampler> nearest;
     std::vector<float> original_texels;  // the environment before light extraction
+    std::vector<Material> materials;      // the scene's own, before any override
+    std::vector<std::string> warnings;    // IBL methods used outside their domain
     FrameSettings frame;
 };
 

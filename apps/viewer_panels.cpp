@@ -52,7 +52,42 @@ void draw_panels(ViewerControls& c) {
     c.reload |= path_input("glTF file", c.model);
     std::vector<std::string> presets = {""};
     for (const MaterialPreset& p : material_presets()) presets.push_back(p.name);
-    c.reload |= choice("material", c.preset, presets);
+    c.reload |= choice("preset", c.preset, presets);
+    ImGui::Separator();
+    c.material_changed |= ImGui::Checkbox("override the materials", &c.override_material);
+    if (c.override_material) {
+        c.material_changed |= ImGui::ColorEdit3("albedo", &c.albedo.x);
+        c.material_changed |= ImGui::SliderFloat("metalness", &c.metallic, 0.0f, 1.0f);
+        c.material_changed |= ImGui::SliderFloat("roughness", &c.roughness, 0.0f, 1.0f);
+    }
+    ImGui::Separator();
+    ImGui::Text("lights");
+    const char* types[] = {"directional", "point", "spot"};
+    for (size_t i = 0; i < c.lights.size(); ++i) {
+        Light& l = c.lights[i];
+        ImGui::PushID(int(i));
+        int type = int(l.type);
+        if (ImGui::Combo("type", &type, types, 3)) l.type = LightType(type);
+        ImGui::ColorEdit3("colour", &l.color.x);
+        ImGui::SliderFloat(l.type == LightType::directional ? "lux" : "candela", &l.intensity, 0.0f, 1000.0f, "%.2f",
+                           ImGuiSliderFlags_Logarithmic);
+        if (l.type != LightType::point && ImGui::SliderFloat3("direction", &l.direction.x, -1.0f, 1.0f) &&
+            glm::length(l.direction) < 1e-3f)
+            l.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+        if (l.type != LightType::directional) ImGui::DragFloat3("position", &l.position.x, 0.05f);
+        bool removed = ImGui::Button("remove");
+        ImGui::PopID();
+        if (removed) {
+            c.lights.erase(c.lights.begin() + long(i));
+            break;
+        }
+    }
+    if (ImGui::Button("add a light")) {
+        Light l;
+        l.direction = glm::normalize(glm::vec3(-1.0f, -1.0f, -1.0f));
+        l.intensity = 3.0f;
+        c.lights.push_back(l);
+    }
     ImGui::End();
 
     ImGui::SetNextWindowPos(ImVec2(display.x - 320, 0), ImGuiCond_Once);
@@ -60,6 +95,21 @@ void draw_panels(ViewerControls& c) {
     ImGui::Begin("Lighting and display");
     c.reload |= choice("environment", c.env, {"builtin:sky", "builtin:white", "none"});
     c.reload |= path_input("HDR file", c.env);
+    int irradiance = int(c.irradiance), specular = int(c.specular);
+    const char* irradiance_methods[] = {"convolve", "riemann", "sh9", "blur", "lowmip"};
+    const char* specular_methods[] = {"automatic", "importance", "filtered", "convolve", "mips"};
+    if (ImGui::Combo("irradiance", &irradiance, irradiance_methods, 5)) {
+        c.irradiance = IrradianceMethod(irradiance);
+        c.reload = true;
+    }
+    if (ImGui::Combo("specular", &specular, specular_methods, 5)) {
+        c.specular = SpecularMethod(specular);
+        c.reload = true;
+    }
+    double bake_ms = 0;
+    for (const PassTiming& t : c.bake_passes) bake_ms += t.time_ms;
+    ImGui::Text("bake %.0f ms GPU", bake_ms);
+    for (const std::string& w : c.warnings) ImGui::TextColored(ImVec4(1.0f, 0.7f, 0.3f, 1.0f), "%s", w.c_str());
     ImGui::SliderFloat("exposure", &c.display.exposure, 0.01f, 16.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
     int tonemap = int(c.display.tonemap);
     const char* tonemaps[] = {"none", "reinhard", "exposure", "aces", "neutral"};

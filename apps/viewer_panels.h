@@ -9,17 +9,29 @@
 #include "graph/graph_run.h"
 #include "render/forward_renderer.h"
 #include "render/views.h"
+#include "ibl/irradiance.h"
+#include "ibl/specular.h"
+#include "scene/scene.h"
 
 namespace facet {
 
 struct ViewerControls {
     std::string model, env, preset;  // preset "" = the model's own materials
+    // Material factors for every material (the thesis' sliders); applied without a bake.
+    bool override_material = false;
+    glm::vec3 albedo{1.0f, 0.78f, 0.34f};
+    float metallic = 1.0f, roughness = 0.3f;
+    bool material_changed = false;
+    std::vector<Light> lights;  // every punctual light of the frame
+    IrradianceMethod irradiance = IrradianceMethod::convolve;
+    SpecularMethod specular = SpecularMethod::automatic;
     View view = View::final_color;
     DisplaySettings display;
     bool skybox = true;
     bool reload = false;  // model, environment or preset changed: load and bake again
     // Shown, not edited.
     std::vector<PassTiming> frame_passes, bake_passes;
+    std::vector<std::string> warnings;  // IBL methods outside their domain
     double frame_ms = 0;
     std::string status;
 };

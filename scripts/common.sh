@@ -14,8 +14,8 @@ FACET_PACKAGES=(
   glslang-dev glslang-tools libglfw3-dev libglm-dev libtinygltf-dev libopenimageio-dev libimgui-dev
 )
 # python3-matplotlib: facet-bench sweep's charts (scripts/chart.py), drawn in a test.
-# xvfb + xauth (which xvfb-run needs; xvfb only recommends it): the viewer's tests.
-FACET_TEST_PACKAGES=(libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth python3-matplotlib)
+# xvfb: the viewer's tests start their own X server.
+FACET_TEST_PACKAGES=(libgtest-dev libgmock-dev libbenchmark-dev xvfb python3-matplotlib)
 
 # Installs the packages that are missing; apt-get update runs only when needed.
 install_packages() {

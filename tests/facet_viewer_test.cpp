@@ -1,9 +1,11 @@
-// facet-viewer under Xvfb on lavapipe, scripted: its screenshot matches facet-render's
-// image for the same settings, the run is validation-clean (ctest sets FACET_VALIDATION=1)
-// and it exits cleanly; bad arguments are clear errors.
+// facet-viewer under Xvfb on lavapipe (a private server per test process), scripted: its
+// screenshot matches facet-render's image for the same settings, sessions that switch
+// everything are validation-clean (ctest sets FACET_VALIDATION=1) and exit cleanly; bad
+// arguments are clear errors.
 #include <gtest/gtest.h>
 
 #include "support/process.h"
+#include "support/xvfb.h"
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -39,7 +41,16 @@ struct TempDir {
     ~TempDir() { fs::remove_all(path); }
 };
 
-const std::string viewer = std::string("xvfb-run -a -s '-screen 0 640x480x24' ") + FACET_VIEWER_PATH;
+// Each test process gets its own X server (Xvfb, as on CI machines without a display).
+facet::test::Xvfb& xvfb() {
+    static facet::test::Xvfb server;
+    return server;
+}
+
+std::string viewer_command() {
+    EXPECT_TRUE(xvfb().running()) << "Xvfb did not start";
+    return xvfb().env() + FACET_VIEWER_PATH;
+}
 
 TEST(FacetViewer, ScreenshotMatchesFacetRender) {
     TempDir dir;
@@ -47,7 +58,7 @@ TEST(FacetViewer, ScreenshotMatchesFacetRender) {
                                     "--model builtin:sphere --preset gold --env builtin:sky --env-width 256 "
                                     "--tonemap aces --light 'point pos=2,2,3 intensity=30'"}) {
         const std::string settings = scene + " --width 160 --height 120";
-        Ran shown = run(viewer + " " + settings + " --frames 3 --screenshot " + (dir.path / "viewer.png").string());
+        Ran shown = run(viewer_command() + " " + settings + " --frames 3 --screenshot " + (dir.path / "viewer.png").string());
         ASSERT_EQ(shown.status, 0) << shown.output;
         EXPECT_EQ(shown.output.find("Validation"), std::string::npos) << shown.output;
         EXPECT_NE(shown.output.find("rendered 3 frames"), std::string::npos) << shown.output;
@@ -72,7 +83,7 @@ TEST(FacetViewer, ScreenshotMatchesFacetRender) {
 TEST(FacetViewer, ScriptedSessionSwitchesEverything) {
     TempDir dir;
     const std::string shot = (dir.path / "switched.png").string();
-    Ran r = run(viewer + " --model builtin:spheres --env builtin:sky --env-width 128 --width 160 --height 120 "
+    Ran r = run(viewer_command() + " --model builtin:spheres --env builtin:sky --env-width 128 --width 160 --height 120 "
                          "--script 'frames 1; model builtin:sphere; frames 1; env builtin:white; frames 1; view D; "
                          "frames 1; view specular; size 200x150; frames 2; screenshot " + shot +
                 "; preset gold; view final; env builtin:sky; frames 1; skybox off; tonemap aces; frames 1'");
@@ -88,6 +99,28 @@ TEST(FacetViewer, ScriptedSessionSwitchesEverything) {
     EXPECT_NE(bad.output.find("unknown view"), std::string::npos) << bad.output;
 }
 
+// The material sliders, scripted: gold's factors on the white sphere give facet-render's
+// gold preset exactly (no bake between).
+TEST(FacetViewer, MaterialFactorsMatchThePreset) {
+    TempDir dir;
+    const std::string common = "--model builtin:sphere --env builtin:sky --env-width 128 --width 120 --height 90";
+    Ran shown = run(viewer_command() + " " + common + " --script 'frames 1; material 1,0.71,0.29,1,0.5; frames 1; screenshot " +
+                    (dir.path / "slider.png").string() + "'");
+    ASSERT_EQ(shown.status, 0) << shown.output;
+    EXPECT_EQ(shown.output.find("Validation"), std::string::npos) << shown.output;
+    Ran rendered = run(std::string(FACET_RENDER_PATH) + " " + common + " --preset gold --out " +
+                       (dir.path / "gold.png").string());
+    ASSERT_EQ(rendered.status, 0) << rendered.output;
+    int w1 = 0, h1 = 0, w2 = 0, h2 = 0;
+    const auto a = pixels((dir.path / "slider.png").string(), &w1, &h1);
+    const auto b = pixels((dir.path / "gold.png").string(), &w2, &h2);
+    ASSERT_EQ(a.size(), b.size());
+    ASSERT_FALSE(a.empty());
+    double diff = 0;
+    for (size_t i = 0; i < a.size(); ++i) diff += std::abs(a[i] - b[i]);
+    EXPECT_LT(diff / double(a.size()) * 255.0, 0.5);
+}
+
 TEST(FacetViewer, HelpAndBadArguments) {
     Ran help = run(std::string(FACET_VIEWER_PATH) + " --help");
     EXPECT_EQ(help.status, 0);
@@ -96,8 +129,8 @@ TEST(FacetViewer, HelpAndBadArguments) {
     Ran bad = run(std::string(FACET_VIEWER_PATH) + " --frames zero");
     EXPECT_EQ(bad.status, 2);
     EXPECT_NE(bad.output.find("--frames"), std::string::npos) << bad.output;
-    Ran model = run(viewer + " --model builtin:nothing --frames 1");
-    EXPECT_EQ(model.status, 1);
+    Ran model = run(viewer_command() + " --model builtin:nothing --frames 1");
+    EXPECT_EQ(model.status, 1) << model.output;
     EXPECT_NE(model.output.find("builtin:nothing"), std::string::npos) << model.output;
 }
 

@@ -125,7 +125,21 @@ Image solid_image(Context& context, VkFormat format, std::array<uint8_t, 4> rgba
     return image;
 }
 
+std::vector<GpuMaterial> gpu_materials(const std::vector<Material>& materials) {
+    std::vector<GpuMaterial> out;
+    for (const Material& m : materials)
+        out.push_back({m.base_color, glm::vec4(m.emissive, m.dielectric_f0),
+                       glm::vec4(m.metallic, m.roughness, m.normal_scale, m.occlusion_strength),
+                       glm::vec4(m.alpha_cutoff, m.specular_factor, 0.0f, 0.0f)});
+    return out;
+}
+
 }  // namespace
+
+void GpuScene::update_materials(const std::vector<Material>& materials) {
+    if (materials.size() != scene_.materials.size()) throw UsageError("update_materials: the material count changed");
+    upload_buffer(context_, materials_, bytes_of(gpu_materials(materials)));
+}
 
 GpuScene::GpuScene(Context& context, const Scene& scene)
     : context_(context),
@@ -137,12 +151,8 @@ GpuScene::GpuScene(Context& context, const Scene& scene)
     for (const Instance& i : scene.instances)
         instances.push_back({i.world, glm::mat4(glm::transpose(glm::inverse(glm::mat3(i.world))))});
     instances_ = make_buffer(context, bytes_of(instances), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "scene instances");
-    std::vector<GpuMaterial> materials;
-    for (const Material& m : scene.materials)
-        materials.push_back({m.base_color, glm::vec4(m.emissive, m.dielectric_f0),
-                             glm::vec4(m.metallic, m.roughness, m.normal_scale, m.occlusion_strength),
-                             glm::vec4(m.alpha_cutoff, m.specular_factor, 0.0f, 0.0f)});
-    materials_ = make_buffer(context, bytes_of(materials), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "scene materials");
+    materials_ = make_buffer(context, bytes_of(gpu_materials(scene.materials)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                             "scene materials");
 
     white_srgb_ = solid_image(context, VK_FORMAT_R8G8B8A8_SRGB, {255, 255, 255, 255}, 1, "default white (sRGB)");
     white_linear_ = solid_image(context, VK_FORMAT_R8G8B8A8_UNORM, {255, 255, 255, 255}, 1, "default white");

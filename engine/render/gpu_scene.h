@@ -43,6 +43,9 @@ public:
     GpuScene& operator=(const GpuScene&) = delete;
 
     const Scene& scene() const { return scene_; }
+    // New factors for the same materials (textures and alpha modes unchanged), uploaded
+    // now; call between frames.
+    void update_materials(const std::vector<Material>& materials);
     VkBuffer vertices() const { return vertices_.handle(); }
     VkBuffer indices() const { return indices_.handle(); }
     VkBuffer instances() const { return instances_.handle(); }
