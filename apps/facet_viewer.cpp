@@ -7,6 +7,7 @@
 // each frame's render graph: the display image is copied into it, then the panels drawn.
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <cstdio>
@@ -94,6 +95,8 @@ std::optional<Options> parse(int argc, char** argv) {
                                     "                          view V, size WxH, exposure E, tonemap OP, skybox on|off,\n"
                                     "                          material R,G,B,METALNESS,ROUGHNESS,\n"
                                     "                          frames N, screenshot FILE")
+        .option("--shader-dir", "DIR", "read shaders from DIR and rebuild the pipelines when a file there changes\n"
+                                       "                          (hot reload; default: FACET_SHADER_DIR, else the built-in copies)")
         .option("--device", "NAME|INDEX", "Vulkan device (default: FACET_DEVICE, a GPU, else lavapipe)");
     cli::Parsed a = p.parse(argc, argv);
     if (p.answered_help_or_version(a, FACET_VERSION)) return std::nullopt;
@@ -122,8 +125,39 @@ std::optional<Options> parse(int argc, char** argv) {
         o.script.push_back("screenshot " + a.get("--screenshot"));
     }
     o.device = a.get("--device");
+    o.job.shader_dir = a.get("--shader-dir", std::getenv("FACET_SHADER_DIR") ? std::getenv("FACET_SHADER_DIR") : "");
+    if (!o.job.shader_dir.empty() && !std::filesystem::is_directory(o.job.shader_dir))
+        throw std::invalid_argument("--shader-dir: " + o.job.shader_dir + " is not a directory");
     return o;
 }
+
+// Modification times of every file under a directory, polled a few times a second.
+class ShaderWatch {
+public:
+    explicit ShaderWatch(std::string dir) : dir_(std::move(dir)) { stamp_ = scan(); }
+    bool changed(double now) {
+        if (dir_.empty() || now - last_poll_ < 0.25) return false;
+        last_poll_ = now;
+        const std::string stamp = scan();
+        if (stamp == stamp_) return false;
+        stamp_ = stamp;
+        return true;
+    }
+
+private:
+    std::string scan() const {
+        std::string stamp;
+        std::error_code ec;
+        for (auto it = std::filesystem::recursive_directory_iterator(dir_, ec);
+             !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec))
+            if (it->is_regular_file(ec))
+                stamp += it->path().string() + "@" +
+                         std::to_string(std::filesystem::last_write_time(it->path(), ec).time_since_epoch().count()) + ";";
+        return stamp;
+    }
+    std::string dir_, stamp_;
+    double last_poll_ = 0;
+};
 
 // Where dropped files go (GLFW's drop callback takes no user data beside the window's).
 ViewerControls* dropped_into = nullptr;
@@ -223,7 +257,11 @@ int run(const Options& o) {
         }
     });
     Sampler nearest(context, VK_FILTER_NEAREST, false, false, "viewer nearest");
-    ShaderCompiler compiler;
+    ShaderCompilerOptions compiler_options;
+    compiler_options.source_dir = o.job.shader_dir;
+    ShaderCompiler compiler(compiler_options);
+    ShaderWatch watch(o.job.shader_dir);
+    controls.status = o.job.shader_dir.empty() ? "hot reload off (start with --shader-dir shaders)" : "";
     ProgramCache programs(context, compiler);
     FrameSync sync(context);
     size_t step = 0;       // next script command
@@ -280,6 +318,19 @@ int run(const Options& o) {
                 throw std::runtime_error(controls.status);
             } else {
                 log("error: " + controls.status + " (the previous scene stays)");
+            }
+        }
+        if (watch.changed(glfwGetTime())) {
+            // Hot reload between frames: nothing recorded is pending after the fence.
+            vkDeviceWaitIdle(context.device());
+            auto reloaded = session->reload_shaders();
+            if (reloaded) reloaded = programs.reload();
+            if (reloaded) {
+                controls.status = "shaders reloaded (" + std::to_string(*reloaded) + " pipelines rebuilt)";
+                log(controls.status);
+            } else {
+                controls.status = "shader error, the last good pipelines keep running:\n" + reloaded.error().message;
+                log(controls.status);
             }
         }
         if (controls.material_changed) {

@@ -144,7 +144,10 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
         }
     }
 
-    s->programs = std::make_unique<ProgramCache>(context, s->compiler);
+    ShaderCompilerOptions compiler_options;
+    compiler_options.source_dir = job.shader_dir;
+    s->compiler = std::make_unique<ShaderCompiler>(compiler_options);
+    s->programs = std::make_unique<ProgramCache>(context, *s->compiler);
     if (job.env != "none") {
         auto env = resolve_environment(job.env, job.env_width, job.sanitize);
         if (!env) return env.error();

@@ -35,6 +35,7 @@ struct RenderJob {
     std::vector<Light> extra_lights;
     float ibl_intensity = 1.0f;
     bool extract_lights = false;  // suns and lamps out of the map, shaded as disk lights
+    std::string shader_dir;       // read shaders from here (hot reload); empty: FACET_SHADER_DIR or embedded
 };
 
 struct RenderedImages {
@@ -82,6 +83,9 @@ public:
         float metallic = 0.0f, roughness = 0.5f;
     };
     void override_materials(const std::optional<MaterialFactors>& factors);
+    // Shader hot reload: every pipeline built again from the current sources, all or
+    // nothing (a compile error keeps the last good ones and is returned). Between frames.
+    Result<size_t> reload_shaders();
     // IBL methods this environment takes outside their domain (ibl/method_domain.h).
     const std::vector<std::string>& warnings() const;
 

@@ -47,6 +47,8 @@ FrameSettings& RenderSession::frame_settings() { return state_->frame; }
 
 const std::vector<std::string>& RenderSession::warnings() const { return state_->warnings; }
 
+Result<size_t> RenderSession::reload_shaders() { return state_->programs->reload(); }
+
 void RenderSession::override_materials(const std::optional<MaterialFactors>& factors) {
     State& s = *state_;
     if (s.materials.empty()) s.materials = s.scene.materials;

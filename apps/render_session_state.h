@@ -19,7 +19,7 @@ struct RenderSession::State {
     RenderJob job;
     Scene scene;
     std::optional<EnvironmentSource> env;
-    ShaderCompiler compiler;
+    std::unique_ptr<ShaderCompiler> compiler;
     std::unique_ptr<ProgramCache> programs;
     std::unique_ptr<IblBake> ibl_bake;
     CompiledGraph bake_graph;

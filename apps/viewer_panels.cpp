@@ -126,7 +126,12 @@ void draw_panels(ViewerControls& c) {
     ImGui::Text("frame %.1f ms", c.frame_ms);
     pass_table("frame passes (GPU)", c.frame_passes);
     pass_table("bake passes (GPU)", c.bake_passes);
-    if (!c.status.empty()) ImGui::TextWrapped("%s", c.status.c_str());
+    if (!c.status.empty()) {
+        const bool error = c.status.find("error") != std::string::npos;
+        ImGui::PushStyleColor(ImGuiCol_Text, error ? ImVec4(1.0f, 0.4f, 0.4f, 1.0f) : ImVec4(0.7f, 0.9f, 0.7f, 1.0f));
+        ImGui::TextWrapped("%s", c.status.c_str());
+        ImGui::PopStyleColor();
+    }
     ImGui::End();
 }
 

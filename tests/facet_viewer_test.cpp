@@ -13,7 +13,10 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <csignal>
 #include <filesystem>
+#include <fstream>
+#include <thread>
 
 #include <OpenImageIO/imageio.h>
 
@@ -119,6 +122,48 @@ TEST(FacetViewer, MaterialFactorsMatchThePreset) {
     double diff = 0;
     for (size_t i = 0; i < a.size(); ++i) diff += std::abs(a[i] - b[i]);
     EXPECT_LT(diff / double(a.size()) * 255.0, 0.5);
+}
+
+// Shader hot reload: the viewer runs from a copy of shaders/; breaking a shader shows the
+// compile error with file:line and keeps the last good pipelines running; fixing it
+// rebuilds them.
+TEST(FacetViewer, ShaderHotReloadShowsErrorsAndKeepsRunning) {
+    TempDir dir;
+    const fs::path shaders = dir.path / "shaders";
+    fs::copy(FACET_SOURCE_DIR "/shaders", shaders, fs::copy_options::recursive);
+    const fs::path log = dir.path / "viewer.log", pid_file = dir.path / "viewer.pid";
+    const std::string command = viewer_command() + " --model builtin:sphere --env none --width 64 --height 48 " +
+                                "--shader-dir " + shaders.string() + " --frames 100000 > " + log.string() +
+                                " 2>&1 & echo $! > " + pid_file.string();
+    ASSERT_EQ(std::system(command.c_str()), 0);
+    auto log_text = [&] {
+        std::ifstream in(log);
+        return std::string((std::istreambuf_iterator<char>(in)), {});
+    };
+    auto wait_for = [&](const std::string& text) {
+        for (int i = 0; i < 400; ++i) {
+            if (log_text().find(text) != std::string::npos) return true;
+            std::this_thread::sleep_for(std::chrono::milliseconds(25));
+        }
+        return false;
+    };
+    EXPECT_TRUE(wait_for("script: frames")) << log_text();
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    const fs::path tonemap = shaders / "render" / "tonemap.comp";
+    std::ifstream original_in(tonemap);
+    const std::string original((std::istreambuf_iterator<char>(original_in)), {});
+    std::ofstream(tonemap) << original << "\nthis is not glsl;\n";
+    EXPECT_TRUE(wait_for("shader error")) << log_text();
+    EXPECT_NE(log_text().find("tonemap.comp:"), std::string::npos) << log_text();
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    int pid = 0;
+    std::ifstream(pid_file) >> pid;
+    EXPECT_EQ(::kill(pid, 0), 0) << "the viewer must keep running after a shader error";
+    std::ofstream(tonemap) << original;
+    EXPECT_TRUE(wait_for("shaders reloaded")) << log_text();
+    if (pid > 0) ::kill(pid, SIGTERM);
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    EXPECT_EQ(log_text().find("Validation"), std::string::npos) << log_text();
 }
 
 TEST(FacetViewer, HelpAndBadArguments) {

@@ -4,22 +4,31 @@
 
 namespace facet {
 
+Result<const Pipeline*> ProgramCache::get(const std::string& key, std::function<Result<Pipeline>()> build) {
+    if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second.pipeline.get();
+    auto built = build();
+    if (!built) return built.error();
+    Entry entry{std::make_unique<Pipeline>(std::move(built).value()), std::move(build)};
+    const Pipeline* result = entry.pipeline.get();
+    pipelines_.emplace(key, std::move(entry));
+    return result;
+}
+
 Result<const Pipeline*> ProgramCache::compute(const std::string& shader, std::span<const VkDescriptorType> bindings,
                                               uint32_t push_constant_bytes, std::span<const ShaderDefine> defines) {
     std::string key = shader;
     for (const ShaderDefine& d : defines) key += "|" + d.name + "=" + d.value;
-    if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second.get();
-    auto spirv = compiler_.compile(ShaderStage::compute, shader, defines);
-    if (!spirv) return spirv.error();
-    try {
-        auto pipeline = std::make_unique<Pipeline>(
-            Pipeline::compute(context_, spirv->words, bindings, push_constant_bytes, shader));
-        const Pipeline* result = pipeline.get();
-        pipelines_[key] = std::move(pipeline);
-        return result;
-    } catch (const VulkanError& e) {
-        return Error{shader + ": cannot create the pipeline: " + e.what(), e.result()};
-    }
+    std::vector<VkDescriptorType> binding_list(bindings.begin(), bindings.end());
+    std::vector<ShaderDefine> define_list(defines.begin(), defines.end());
+    return get(key, [this, shader, binding_list, push_constant_bytes, define_list]() -> Result<Pipeline> {
+        auto spirv = compiler_.compile(ShaderStage::compute, shader, define_list);
+        if (!spirv) return spirv.error();
+        try {
+            return Pipeline::compute(context_, spirv->words, binding_list, push_constant_bytes, shader);
+        } catch (const VulkanError& e) {
+            return Error{shader + ": cannot create the pipeline: " + e.what(), e.result()};
+        }
+    });
 }
 
 Result<const Pipeline*> ProgramCache::graphics(const std::string& vertex_shader, const std::string& fragment_shader,
@@ -34,21 +43,34 @@ Result<const Pipeline*> ProgramCache::graphics(const std::string& vertex_shader,
            std::to_string(desc.cull) + "|t" + std::to_string(desc.depth_test) + std::to_string(desc.depth_write) +
            "|blend" + std::to_string(desc.alpha_blend) + "|pc" + std::to_string(desc.push_constant_bytes) + "|topo" +
            std::to_string(desc.topology);
-    if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second.get();
-    auto vertex = compiler_.compile(ShaderStage::vertex, vertex_shader, defines);
-    if (!vertex) return vertex.error();
-    auto fragment = compiler_.compile(ShaderStage::fragment, fragment_shader, defines);
-    if (!fragment) return fragment.error();
-    desc.vertex_spirv = vertex->words;
-    desc.fragment_spirv = fragment->words;
-    try {
-        auto pipeline = std::make_unique<Pipeline>(Pipeline::graphics(context_, desc, fragment_shader));
-        const Pipeline* result = pipeline.get();
-        pipelines_[key] = std::move(pipeline);
-        return result;
-    } catch (const VulkanError& e) {
-        return Error{fragment_shader + ": cannot create the pipeline: " + e.what(), e.result()};
+    std::vector<ShaderDefine> define_list(defines.begin(), defines.end());
+    desc.vertex_spirv = {};
+    desc.fragment_spirv = {};
+    return get(key, [this, vertex_shader, fragment_shader, desc, define_list]() -> Result<Pipeline> {
+        auto vertex = compiler_.compile(ShaderStage::vertex, vertex_shader, define_list);
+        if (!vertex) return vertex.error();
+        auto fragment = compiler_.compile(ShaderStage::fragment, fragment_shader, define_list);
+        if (!fragment) return fragment.error();
+        Pipeline::GraphicsDesc d = desc;
+        d.vertex_spirv = vertex->words;
+        d.fragment_spirv = fragment->words;
+        try {
+            return Pipeline::graphics(context_, d, fragment_shader);
+        } catch (const VulkanError& e) {
+            return Error{fragment_shader + ": cannot create the pipeline: " + e.what(), e.result()};
+        }
+    });
+}
+
+Result<size_t> ProgramCache::reload() {
+    std::vector<std::pair<Entry*, Pipeline>> rebuilt;
+    for (auto& [key, entry] : pipelines_) {
+        auto built = entry.build();
+        if (!built) return built.error();
+        rebuilt.emplace_back(&entry, std::move(built).value());
     }
+    for (auto& [entry, pipeline] : rebuilt) *entry->pipeline = std::move(pipeline);
+    return rebuilt.size();
 }
 
 }  // namespace facet
