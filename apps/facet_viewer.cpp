@@ -71,10 +71,12 @@ void check_command(const std::string& command) {
     } else if (verb == "preset") {
         if (!find_material_preset(arg)) bad("unknown preset (" + material_preset_names() + ")");
     } else if (verb == "material") {
-        float v[5];
-        char extra;
-        if (std::sscanf(arg.c_str(), "%f,%f,%f,%f,%f%c", &v[0], &v[1], &v[2], &v[3], &v[4], &extra) != 5)
-            bad("expected R,G,B,METALNESS,ROUGHNESS");
+        float v[6];
+        char textures[8] = "", extra;
+        const int n = std::sscanf(arg.c_str(), "%f,%f,%f,%f,%f,%f,%7[a-z]%c", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5],
+                                  textures, &extra);
+        if (n < 5 || n > 7 || (n == 7 && std::string(textures) != "on" && std::string(textures) != "off"))
+            bad("expected R,G,B,METALNESS,ROUGHNESS[,AO[,on|off]]");
     } else if (verb == "screenshot") {
         if (arg.size() < 5) bad("expected a .png or .exr file name");
     } else if (verb != "model" && verb != "env") {
@@ -93,7 +95,7 @@ std::optional<Options> parse(int argc, char** argv) {
         .option("--screenshot", "FILE", "save the last frame as FILE (.png tone-mapped, .exr linear)")
         .option("--script", "CMDS", "run commands separated by ';', then exit: model M, env E, preset P,\n"
                                     "                          view V, size WxH, exposure E, tonemap OP, skybox on|off,\n"
-                                    "                          material R,G,B,METALNESS,ROUGHNESS,\n"
+                                    "                          material R,G,B,METALNESS,ROUGHNESS[,AO[,on|off textures]],\n"
                                     "                          frames N, screenshot FILE")
         .option("--shader-dir", "DIR", "read shaders from DIR and rebuild the pipelines when a file there changes\n"
                                        "                          (hot reload; default: FACET_SHADER_DIR, else the built-in copies)")
@@ -217,7 +219,11 @@ int run(const Options& o) {
     auto created_swapchain = Swapchain::create(context, surface, uint32_t(fb_w), uint32_t(fb_h));
     if (!created_swapchain) throw std::runtime_error(created_swapchain.error().message);
     std::unique_ptr<Swapchain> swapchain = std::move(*created_swapchain);
-    auto log = [](const std::string& line) { std::fprintf(stderr, "%s: %s\n", program, line.c_str()); };
+    // Long work (loading, baking) shows its progress in the title bar as well.
+    auto log = [window](const std::string& line) {
+        std::fprintf(stderr, "%s: %s\n", program, line.c_str());
+        glfwSetWindowTitle(window, (std::string(program) + " - " + line).c_str());
+    };
 
     ViewerControls controls;
     controls.model = o.job.model;
@@ -233,6 +239,10 @@ int run(const Options& o) {
     base.frame.height = swapchain->extent().height;
     std::unique_ptr<RenderSession> session = open_session(context, base, controls, log);
     if (!session) throw std::runtime_error(controls.status);
+    auto show_title = [&] {
+        glfwSetWindowTitle(window, (std::string(program) + " - " + controls.model + " under " + controls.env).c_str());
+    };
+    show_title();
     CameraControl camera;
     camera.view = camera.home = session->camera();
     glfwSetWindowUserPointer(window, &camera);
@@ -292,12 +302,16 @@ int run(const Options& o) {
             else if (verb == "exposure") controls.display.exposure = float(std::stod(arg));
             else if (verb == "skybox") controls.skybox = arg == "on";
             else if (verb == "material") {
-                float r = 0, g = 0, b = 0, metal = 0, rough = 0;
-                std::sscanf(arg.c_str(), "%f,%f,%f,%f,%f", &r, &g, &b, &metal, &rough);
+                float v[6] = {1, 1, 1, 0, 0.5f, 1};
+                char textures[8] = "on";
+                std::sscanf(arg.c_str(), "%f,%f,%f,%f,%f,%f,%7s", &v[0], &v[1], &v[2], &v[3], &v[4], &v[5], textures);
                 controls.override_material = true;
-                controls.albedo = glm::vec3(r, g, b);
-                controls.metallic = metal;
-                controls.roughness = rough;
+                controls.albedo = glm::vec3(v[0], v[1], v[2]);
+                controls.metallic = v[3];
+                controls.roughness = v[4];
+                controls.occlusion = v[5];
+                const bool on = std::string(textures) != "off";
+                controls.albedo_texture = controls.metal_rough_texture = controls.occlusion_texture = on;
                 controls.material_changed = true;
             }
             else if (verb == "size") {
@@ -314,6 +328,7 @@ int run(const Options& o) {
             if (auto next = open_session(context, base, controls, log)) {
                 session = std::move(next);
                 camera.view = camera.home = session->camera();
+                show_title();
             } else if (scripted) {
                 throw std::runtime_error(controls.status);
             } else {
@@ -337,8 +352,9 @@ int run(const Options& o) {
             controls.material_changed = false;
             vkDeviceWaitIdle(context.device());
             if (controls.override_material)
-                session->override_materials(
-                    RenderSession::MaterialFactors{controls.albedo, controls.metallic, controls.roughness});
+                session->override_materials(RenderSession::MaterialFactors{
+                    controls.albedo, controls.metallic, controls.roughness, controls.occlusion,
+                    controls.albedo_texture, controls.metal_rough_texture, controls.occlusion_texture});
             else
                 session->override_materials(std::nullopt);
         }

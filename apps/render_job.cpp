@@ -209,7 +209,9 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
         s->bake_run = std::make_unique<GraphRun>(context, s->bake_graph);
         say("baking " + job.env + " (" + std::to_string(s->env->width) + "x" + std::to_string(s->env->height) +
             ", cube " + std::to_string(s->ibl_settings.cube_size) + "^2)");
-        s->bake_run->submit_and_wait();
+        s->bake_run->submit_and_wait([&](uint32_t done, uint32_t total, const std::string& pass) {
+            say("baking [" + std::to_string(done) + "/" + std::to_string(total) + "] " + pass);
+        });
         s->bake_timings = s->bake_run->timings();
     }
     s->gpu_scene = std::make_unique<GpuScene>(context, s->scene);

@@ -76,11 +76,13 @@ public:
     Result<FrameImages> add_frame_passes(RenderGraph& graph);
     // Camera, size and display for the next frames.
     FrameSettings& frame_settings();
-    // Every material's base colour, metalness and roughness factors replaced (textures
-    // still multiply them, as in glTF), or the scene's own back (nullopt).
+    // Every material's base colour, metalness, roughness and occlusion factors replaced
+    // (textures, when kept, still multiply them, as in glTF), or the scene's own back.
     struct MaterialFactors {
         glm::vec3 albedo{1.0f};
-        float metallic = 0.0f, roughness = 0.5f;
+        float metallic = 0.0f, roughness = 0.5f, occlusion = 1.0f;
+        // Each input as a factor alone or times the model's texture (the thesis' choice).
+        bool albedo_texture = true, metal_rough_texture = true, occlusion_texture = true;
     };
     void override_materials(const std::optional<MaterialFactors>& factors);
     // Shader hot reload: every pipeline built again from the current sources, all or

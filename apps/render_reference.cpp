@@ -52,14 +52,25 @@ Result<size_t> RenderSession::reload_shaders() { return state_->programs->reload
 void RenderSession::override_materials(const std::optional<MaterialFactors>& factors) {
     State& s = *state_;
     if (s.materials.empty()) s.materials = s.scene.materials;
+    const int had_textures = s.textures_on;
     s.scene.materials = s.materials;
+    s.textures_on = !factors ? 7
+                             : (factors->albedo_texture ? 1 : 0) | (factors->metal_rough_texture ? 2 : 0) |
+                                   (factors->occlusion_texture ? 4 : 0);
     if (factors)
         for (Material& m : s.scene.materials) {
             m.base_color = glm::vec4(factors->albedo, m.base_color.a);
             m.metallic = factors->metallic;
             m.roughness = factors->roughness;
+            m.occlusion = factors->occlusion;
+            if (!factors->albedo_texture) m.base_color_texture = {};
+            if (!factors->metal_rough_texture) m.metallic_roughness_texture = {};
+            if (!factors->occlusion_texture) m.occlusion_texture = {};
         }
-    s.gpu_scene->update_materials(s.scene.materials);
+    // Factors alone: new buffer contents. A texture switched on or off: other shader
+    // variants and descriptors, so the GPU scene is built again.
+    if (had_textures != s.textures_on) s.gpu_scene = std::make_unique<GpuScene>(*s.context, s.scene);
+    else s.gpu_scene->update_materials(s.scene.materials);
 }
 
 Result<RenderedImages> RenderSession::render_reference(const ReferenceSettings& settings,

@@ -34,6 +34,7 @@ struct RenderSession::State {
     std::vector<float> original_texels;  // the environment before light extraction
     std::vector<Material> materials;      // the scene's own, before any override
     std::vector<std::string> warnings;    // IBL methods used outside their domain
+    int textures_on = 7;                  // bits: albedo, metallic-roughness, occlusion textures used
     FrameSettings frame;
 };
 

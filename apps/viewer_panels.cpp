@@ -5,6 +5,7 @@
 #include <imgui.h>
 
 #include "ibl/ibl_bake.h"
+#include "ibl/method_domain.h"
 #include "scene/builtin_scenes.h"
 #include "scene/material_presets.h"
 
@@ -57,8 +58,12 @@ void draw_panels(ViewerControls& c) {
     c.material_changed |= ImGui::Checkbox("override the materials", &c.override_material);
     if (c.override_material) {
         c.material_changed |= ImGui::ColorEdit3("albedo", &c.albedo.x);
+        c.material_changed |= ImGui::Checkbox("x albedo texture", &c.albedo_texture);
         c.material_changed |= ImGui::SliderFloat("metalness", &c.metallic, 0.0f, 1.0f);
         c.material_changed |= ImGui::SliderFloat("roughness", &c.roughness, 0.0f, 1.0f);
+        c.material_changed |= ImGui::Checkbox("x metallic-roughness texture", &c.metal_rough_texture);
+        c.material_changed |= ImGui::SliderFloat("AO", &c.occlusion, 0.0f, 1.0f);
+        c.material_changed |= ImGui::Checkbox("x occlusion texture", &c.occlusion_texture);
     }
     ImGui::Separator();
     ImGui::Text("lights");
@@ -106,6 +111,8 @@ void draw_panels(ViewerControls& c) {
         c.specular = SpecularMethod(specular);
         c.reload = true;
     }
+    ImGui::TextWrapped("irradiance error: %s", documented_bound(c.irradiance).c_str());
+    ImGui::TextWrapped("specular error: %s", documented_bound(c.specular, 1024).c_str());
     double bake_ms = 0;
     for (const PassTiming& t : c.bake_passes) bake_ms += t.time_ms;
     ImGui::Text("bake %.0f ms GPU", bake_ms);

@@ -20,7 +20,9 @@ struct ViewerControls {
     // Material factors for every material (the thesis' sliders); applied without a bake.
     bool override_material = false;
     glm::vec3 albedo{1.0f, 0.78f, 0.34f};
-    float metallic = 1.0f, roughness = 0.3f;
+    float metallic = 1.0f, roughness = 0.3f, occlusion = 1.0f;
+    // Each input times the model's texture, or the factor alone.
+    bool albedo_texture = true, metal_rough_texture = true, occlusion_texture = true;
     bool material_changed = false;
     std::vector<Light> lights;  // every punctual light of the frame
     IrradianceMethod irradiance = IrradianceMethod::convolve;

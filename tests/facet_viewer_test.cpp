@@ -166,6 +166,34 @@ TEST(FacetViewer, ShaderHotReloadShowsErrorsAndKeepsRunning) {
     EXPECT_EQ(log_text().find("Validation"), std::string::npos) << log_text();
 }
 
+// Factors or textures, and the AO factor: on the textured box, switching its texture off
+// changes the image, and an AO of 0 removes the image-based light.
+TEST(FacetViewer, TexturesAndAmbientOcclusionFactor) {
+    TempDir dir;
+    auto shot = [&](const char* name) { return (dir.path / name).string(); };
+    Ran r = run(viewer_command() + " --model " FACET_SHARED_DATA_DIR "/models/box_textured/BoxTextured.gltf "
+                "--env builtin:white --env-width 64 --no-skybox --width 96 --height 72 --script '"
+                "material 1,1,1,0,0.5,1,on; frames 1; screenshot " + shot("on.png") +
+                "; material 1,1,1,0,0.5,1,off; frames 1; screenshot " + shot("off.png") +
+                "; material 1,1,1,0,0.5,0,off; frames 1; screenshot " + shot("dark.png") + "'");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_EQ(r.output.find("Validation"), std::string::npos) << r.output;
+    int w = 0, h = 0;
+    const auto on = pixels(shot("on.png"), &w, &h), off = pixels(shot("off.png"), &w, &h),
+               dark = pixels(shot("dark.png"), &w, &h);
+    ASSERT_EQ(on.size(), off.size());
+    ASSERT_EQ(on.size(), dark.size());
+    double changed = 0, lit = 0, unlit = 0;
+    for (size_t i = 0; i < on.size(); ++i) {
+        if (i % 4 == 3) continue;  // colour only (RGBA)
+        changed += std::abs(on[i] - off[i]);
+        lit += off[i];
+        unlit += dark[i];
+    }
+    EXPECT_GT(changed / double(on.size()), 0.01) << "the texture must show";
+    EXPECT_LT(unlit, 0.2 * lit) << "AO 0 takes the environment's light away";
+}
+
 TEST(FacetViewer, HelpAndBadArguments) {
     Ran help = run(std::string(FACET_VIEWER_PATH) + " --help");
     EXPECT_EQ(help.status, 0);

@@ -35,6 +35,23 @@ EnvironmentStats environment_stats(std::span<const float> rgba, uint32_t width, 
     return stats;
 }
 
+std::string documented_bound(IrradianceMethod method) {
+    return method == IrradianceMethod::convolve ? "within 2% everywhere"
+                                                : "within 5% on skies without compact lights";
+}
+
+std::string documented_bound(SpecularMethod method, uint32_t sample_count) {
+    switch (method) {
+    case SpecularMethod::automatic:
+    case SpecularMethod::convolve: return "within 5% everywhere";
+    case SpecularMethod::filtered:
+        return sample_count >= 1024 ? "within 5% everywhere" : "within 5% without very bright lights";
+    case SpecularMethod::importance: return "within 10% without lights far brighter than their surroundings";
+    case SpecularMethod::mips: return "none: a box filter, not a GGX lobe";
+    }
+    return "";
+}
+
 std::vector<std::string> method_warnings(const EnvironmentStats& s, const IblSettings& settings) {
     std::vector<std::string> warnings;
     if (s.black) return warnings;

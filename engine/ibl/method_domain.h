@@ -26,6 +26,10 @@ struct EnvironmentStats {
 
 EnvironmentStats environment_stats(std::span<const float> rgba, uint32_t width, uint32_t height);
 
+// The documented bound in words, e.g. "2% everywhere", for panels and reports.
+std::string documented_bound(IrradianceMethod method);
+std::string documented_bound(SpecularMethod method, uint32_t sample_count);
+
 // One sentence per method used outside its domain (empty: every method is inside).
 std::vector<std::string> method_warnings(const EnvironmentStats& stats, const IblSettings& settings);
 

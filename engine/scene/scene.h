@@ -63,6 +63,9 @@ struct Material {
     // Scales the specular lobe and its Fresnel (KHR_materials_specular's factor):
     // 0 leaves a Lambert-only material, as the white-furnace test needs.
     float specular_factor = 1.0f;
+    // Ambient occlusion as a factor (the thesis' "AO" slider), times the occlusion
+    // texture's value where there is one.
+    float occlusion = 1.0f;
     TextureRef base_color_texture;          // sRGB
     TextureRef metallic_roughness_texture;  // linear: G = roughness, B = metalness
     TextureRef normal_texture;              // linear, tangent space

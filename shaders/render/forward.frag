@@ -53,9 +53,9 @@ Surface surface_at(MaterialData m) {
 #endif
     s.metallic = clamp(s.metallic, 0.0, 1.0);
     s.roughness = clamp(s.roughness, 0.0, 1.0);
-    s.occlusion = 1.0;
+    s.occlusion = m.extra.z;
 #ifdef HAS_OCCLUSION_MAP
-    s.occlusion = 1.0 + m.factors.w * (texture(occlusion_map, in_uv).r - 1.0);
+    s.occlusion *= 1.0 + m.factors.w * (texture(occlusion_map, in_uv).r - 1.0);
 #endif
     s.emissive = m.emissive_f0.rgb;
 #ifdef HAS_EMISSIVE_MAP
