@@ -14,6 +14,7 @@
 #include "bake_budget.h"
 #include "bake_files.h"
 #include "cli.h"
+#include "render_options.h"
 #include "core/hash.h"
 #include "gpu/context.h"
 #include "gpu/transfer.h"
@@ -181,12 +182,8 @@ int bake(const Options& o) {
     }
     if (Status s = ensure_directory(o.out_dir); !s) throw std::runtime_error(s.error().message);
 
-    ContextOptions context_options;
-    context_options.device = o.device;
-    if (o.validation) context_options.validation = true;
-    auto created = Context::create(context_options);
-    if (!created) throw std::runtime_error("cannot start Vulkan: " + created.error().message);
-    Context& context = *created.value();
+    const std::unique_ptr<Context> vulkan = start_vulkan(o.device, o.validation);
+    Context& context = *vulkan;
     std::fprintf(stderr, "%s: %s (%ux%u) -> cube %u^2, %u specular levels, on %s\n", program, o.env.c_str(),
                  source->width, source->height, cube_size, specular.levels, context.device_name().c_str());
 

@@ -150,12 +150,8 @@ std::string stem_path(const std::string& out) {
 }
 
 int render(const Options& o) {
-    ContextOptions context_options;
-    context_options.device = o.device;
-    if (o.validation) context_options.validation = true;
-    auto created = Context::create(context_options);
-    if (!created) throw std::runtime_error("cannot start Vulkan: " + created.error().message);
-    Context& context = *created.value();
+    const std::unique_ptr<Context> vulkan = start_vulkan(o.device, o.validation);
+    Context& context = *vulkan;
     const fs::path parent = fs::path(o.out).parent_path();
     if (!parent.empty() && !fs::is_directory(parent))
         throw std::runtime_error(o.out + ": the directory " + parent.string() + " does not exist");

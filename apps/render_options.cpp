@@ -117,4 +117,13 @@ void parse_render_options(const cli::Parsed& a, RenderJob& j) {
     j.sanitize = a.has("--sanitize");
 }
 
+std::unique_ptr<Context> start_vulkan(const std::string& device, bool validation) {
+    ContextOptions options;
+    options.device = device;
+    if (validation) options.validation = true;
+    auto created = Context::create(options);
+    if (!created) throw std::runtime_error("cannot start Vulkan: " + created.error().message);
+    return std::move(created).value();
+}
+
 }  // namespace facet
