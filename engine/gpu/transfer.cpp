@@ -9,28 +9,11 @@ namespace facet {
 
 namespace {
 
-VkImageMemoryBarrier2 layout_barrier(VkImage image, VkImageSubresourceRange range, VkImageLayout from,
-                                     VkImageLayout to) {
-    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    // Conservative on purpose: these helpers run outside any graph, between unknown work.
-    b.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    b.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
-    b.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    b.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-    b.oldLayout = from;
-    b.newLayout = to;
-    b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.image = image;
-    b.subresourceRange = range;
-    return b;
-}
-
-void barrier(VkCommandBuffer cmd, const VkImageMemoryBarrier2& b) {
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.imageMemoryBarrierCount = 1;
-    dep.pImageMemoryBarriers = &b;
-    vkCmdPipelineBarrier2(cmd, &dep);
+// Conservative on purpose: these helpers run outside any graph, between unknown work.
+void layout_transition(VkCommandBuffer cmd, VkImage image, VkImageSubresourceRange range, VkImageLayout from,
+                       VkImageLayout to) {
+    image_barrier(cmd, image, range, from, to, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
 }
 
 VkDeviceSize subresource_bytes(const ImageDesc& desc, uint32_t mip) {
@@ -65,6 +48,26 @@ void memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stages, VkAcc
     vkCmdPipelineBarrier2(cmd, &dep);
 }
 
+void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageSubresourceRange range, VkImageLayout from,
+                   VkImageLayout to, VkPipelineStageFlags2 src_stages, VkAccessFlags2 src_access,
+                   VkPipelineStageFlags2 dst_stages, VkAccessFlags2 dst_access) {
+    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    b.srcStageMask = src_stages;
+    b.srcAccessMask = src_access;
+    b.dstStageMask = dst_stages;
+    b.dstAccessMask = dst_access;
+    b.oldLayout = from;
+    b.newLayout = to;
+    b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = image;
+    b.subresourceRange = range;
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.imageMemoryBarrierCount = 1;
+    dep.pImageMemoryBarriers = &b;
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
 void upload_image(Context& context, Image& image, uint32_t mip, uint32_t layer,
                   std::span<const std::byte> data, VkImageLayout current_layout, VkImageLayout final_layout) {
     check_subresource(image, mip, layer);
@@ -77,11 +80,11 @@ void upload_image(Context& context, Image& image, uint32_t mip, uint32_t layer,
     staging.flush();
     VkImageSubresourceRange range{aspect_of(image.desc().format), mip, 1, layer, 1};
     context.submit_and_wait([&](VkCommandBuffer cmd) {
-        barrier(cmd, layout_barrier(image.handle(), range, current_layout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL));
+        layout_transition(cmd, image.handle(), range, current_layout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
         VkBufferImageCopy region = copy_region(image, mip, layer);
         vkCmdCopyBufferToImage(cmd, staging.handle(), image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
                                &region);
-        barrier(cmd, layout_barrier(image.handle(), range, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, final_layout));
+        layout_transition(cmd, image.handle(), range, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, final_layout);
     });
 }
 
@@ -92,11 +95,11 @@ std::vector<std::byte> read_image(Context& context, const Image& image, uint32_t
     Buffer staging(context, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::readback, "readback staging");
     VkImageSubresourceRange range{aspect_of(image.desc().format), mip, 1, layer, 1};
     context.submit_and_wait([&](VkCommandBuffer cmd) {
-        barrier(cmd, layout_barrier(image.handle(), range, current_layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL));
+        layout_transition(cmd, image.handle(), range, current_layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
         VkBufferImageCopy region = copy_region(image, mip, layer);
         vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(), 1,
                                &region);
-        barrier(cmd, layout_barrier(image.handle(), range, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, current_layout));
+        layout_transition(cmd, image.handle(), range, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, current_layout);
         memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                        VK_ACCESS_2_HOST_READ_BIT);
     });

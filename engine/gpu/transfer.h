@@ -23,6 +23,12 @@ void upload_image(Context& context, Image& image, uint32_t mip, uint32_t layer,
 std::vector<std::byte> read_image(Context& context, const Image& image, uint32_t mip,
                                   uint32_t layer, VkImageLayout current_layout);
 
+// One image layout transition / dependency (synchronization2), for work recorded outside
+// a render graph (uploads, mip generation, clears); the graph derives its own barriers.
+void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageSubresourceRange range, VkImageLayout from,
+                   VkImageLayout to, VkPipelineStageFlags2 src_stages, VkAccessFlags2 src_access,
+                   VkPipelineStageFlags2 dst_stages, VkAccessFlags2 dst_access);
+
 // A global memory barrier (synchronization2), e.g. compute writes -> host reads.
 void memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stages, VkAccessFlags2 src_access,
                     VkPipelineStageFlags2 dst_stages, VkAccessFlags2 dst_access);

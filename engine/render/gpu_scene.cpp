@@ -45,24 +45,7 @@ VkSamplerCreateInfo sampler_info(const TextureSampler& s) {
     return info;
 }
 
-void image_barrier(VkCommandBuffer cmd, VkImage image, uint32_t mip, uint32_t mip_count, VkImageLayout from,
-                   VkImageLayout to, VkPipelineStageFlags2 src_stage, VkAccessFlags2 src_access,
-                   VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access) {
-    VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    b.srcStageMask = src_stage;
-    b.srcAccessMask = src_access;
-    b.dstStageMask = dst_stage;
-    b.dstAccessMask = dst_access;
-    b.oldLayout = from;
-    b.newLayout = to;
-    b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    b.image = image;
-    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, mip, mip_count, 0, 1};
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.imageMemoryBarrierCount = 1;
-    dep.pImageMemoryBarriers = &b;
-    vkCmdPipelineBarrier2(cmd, &dep);
-}
+VkImageSubresourceRange mips(uint32_t first, uint32_t count) { return {VK_IMAGE_ASPECT_COLOR_BIT, first, count, 0, 1}; }
 
 // Uploads mip 0 and fills the chain with linear 2x2 blits (sRGB images filter in linear
 // space), leaving every level SHADER_READ_ONLY for fragment shaders.
@@ -80,7 +63,7 @@ Image upload_texture(Context& context, const TextureImage& t, bool srgb) {
     staging.flush();
     context.submit_and_wait([&](VkCommandBuffer cmd) {
         VkImage img = image.handle();
-        image_barrier(cmd, img, 0, desc.mip_levels, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+        image_barrier(cmd, img, mips(0, desc.mip_levels), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                       VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                       VK_ACCESS_2_TRANSFER_WRITE_BIT);
         VkBufferImageCopy copy{};
@@ -88,7 +71,7 @@ Image upload_texture(Context& context, const TextureImage& t, bool srgb) {
         copy.imageExtent = {t.width, t.height, 1};
         vkCmdCopyBufferToImage(cmd, staging.handle(), img, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
         for (uint32_t m = 1; m < desc.mip_levels; ++m) {
-            image_barrier(cmd, img, m - 1, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+            image_barrier(cmd, img, mips(m - 1, 1), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                           VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                           VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
             VkImageBlit blit{};
@@ -100,11 +83,11 @@ Image upload_texture(Context& context, const TextureImage& t, bool srgb) {
                            &blit, VK_FILTER_LINEAR);
         }
         if (desc.mip_levels > 1)
-            image_barrier(cmd, img, 0, desc.mip_levels - 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+            image_barrier(cmd, img, mips(0, desc.mip_levels - 1), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                           VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                           VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                           VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-        image_barrier(cmd, img, desc.mip_levels - 1, 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+        image_barrier(cmd, img, mips(desc.mip_levels - 1, 1), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                       VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                       VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
