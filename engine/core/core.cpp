@@ -10,8 +10,21 @@
 
 namespace facet {
 
+namespace {
+// What a user can make of the failures that reach them (the VkResult alone says little).
+std::string vk_result_meaning(VkResult result) {
+    switch (result) {
+        case VK_ERROR_OUT_OF_DEVICE_MEMORY: return " (the device is out of memory: try smaller images or sizes)";
+        case VK_ERROR_OUT_OF_HOST_MEMORY: return " (the driver is out of host memory)";
+        case VK_ERROR_DEVICE_LOST:
+            return " (the device was lost: a driver crash, reset or timeout; nothing more can run on it)";
+        default: return "";
+    }
+}
+}  // namespace
+
 VulkanError::VulkanError(VkResult result, const std::string& what)
-    : std::runtime_error(what + ": " + vk_result_name(result)), result_(result) {}
+    : std::runtime_error(what + ": " + vk_result_name(result) + vk_result_meaning(result)), result_(result) {}
 
 const char* vk_result_name(VkResult result) {
     switch (result) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/log.h"
+#include "gpu/fault_injection.h"
 #include "gpu/memory.h"
 
 namespace facet {
@@ -16,6 +17,8 @@ namespace facet {
 namespace {
 
 constexpr const char* validation_layer = "VK_LAYER_KHRONOS_validation";
+
+std::atomic<uint32_t> g_process_validation_messages{0};
 
 bool has_layer(const char* name) {
     uint32_t count = 0;
@@ -141,6 +144,8 @@ std::optional<uint32_t> find_queue_family(VkPhysicalDevice device) {
 
 }  // namespace
 
+uint32_t Context::process_validation_message_count() { return g_process_validation_messages.load(); }
+
 bool ContextOptions::default_validation() {
     if (const char* env = std::getenv("FACET_VALIDATION")) return std::strcmp(env, "0") != 0;
 #ifdef NDEBUG
@@ -156,12 +161,14 @@ VKAPI_ATTR VkBool32 VKAPI_CALL Context::on_debug_message(
     auto* context = static_cast<Context*>(user);
     const bool is_error = severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
     context->validation_messages_.fetch_add(1);
+    g_process_validation_messages.fetch_add(1);
     log(is_error ? LogLevel::error : LogLevel::warning,
         std::string("validation: ") + (data->pMessage ? data->pMessage : "(no message)"));
     return VK_FALSE;
 }
 
 Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) {
+    if (Status armed = inject_faults_from_environment(); !armed) return armed.error();
     std::unique_ptr<Context> context(new Context());
     Context& c = *context;
 
@@ -295,6 +302,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
 }
 
 Result<std::unique_ptr<Context>> Context::adopt(const HostVulkan& host, const ContextOptions&) {
+    if (Status armed = inject_faults_from_environment(); !armed) return armed.error();
     if (!host.instance || !host.physical_device || !host.device || !host.queue)
         return Error{"HostVulkan: instance, physical device, device and queue are all required"};
     std::unique_ptr<Context> context(new Context());
@@ -403,9 +411,15 @@ void Context::submit_locked(VkCommandBuffer cmd) {
     VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
     submit.commandBufferInfoCount = 1;
     submit.pCommandBufferInfos = &cmd_info;
+    // After a loss every later submission fails the same way, without touching the
+    // device again (vkQueueSubmit2's valid usage no longer holds for a lost device).
+    if (device_lost_) throw VulkanError(VK_ERROR_DEVICE_LOST, "vkQueueSubmit2 (the device was lost earlier)");
     vk_check(vkResetFences(device_, 1, &fence_), "vkResetFences");
-    vk_check(vkQueueSubmit2(queue_, 1, &submit, fence_), "vkQueueSubmit2");
-    vk_check(vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+    VkResult r = take_injected_fault(FaultSite::submit);
+    if (r == VK_SUCCESS) r = vkQueueSubmit2(queue_, 1, &submit, fence_);
+    if (r == VK_SUCCESS) r = vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX);
+    if (r == VK_ERROR_DEVICE_LOST) device_lost_ = true;
+    vk_check(r, "vkQueueSubmit2");
 }
 
 }  // namespace facet

@@ -73,6 +73,12 @@ public:
 
     // Validation messages (warnings and errors) received since creation.
     uint32_t validation_message_count() const { return validation_messages_.load(); }
+    // Validation messages received by every context of this process, including those
+    // reported while a context was being destroyed (objects left undestroyed).
+    static uint32_t process_validation_message_count();
+    // True once a submission reported VK_ERROR_DEVICE_LOST: every later submission
+    // throws VulkanError(VK_ERROR_DEVICE_LOST); destroying objects stays valid.
+    bool device_lost() const { return device_lost_.load(); }
 
     // Debug name for any Vulkan object (no-op without VK_EXT_debug_utils).
     void set_name(VkObjectType type, uint64_t handle, const std::string& name) const;
@@ -111,6 +117,7 @@ private:
     PFN_vkSetDebugUtilsObjectNameEXT set_object_name_ = nullptr;
     std::unique_ptr<Allocator> allocator_;
     std::atomic<uint32_t> validation_messages_{0};
+    std::atomic<bool> device_lost_{false};
     std::mutex submit_mutex_;  // one-shot pool and fence are shared
 };
 

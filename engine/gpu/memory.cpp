@@ -5,10 +5,18 @@
 #include <string>
 
 #include "core/result.h"
+#include "gpu/fault_injection.h"
 
 namespace facet {
 
 namespace {
+// Injected per resource rather than at vkAllocateMemory, so that every resource's
+// allocation can be made to fail, not only those that open a new block.
+void fail_if_injected(VkDeviceSize size) {
+    if (VkResult r = take_injected_fault(FaultSite::memory))
+        throw VulkanError(r, "vkAllocateMemory (" + std::to_string(size) + " bytes)");
+}
+
 VkDeviceSize align_up(VkDeviceSize value, VkDeviceSize alignment) {
     return (value + alignment - 1) / alignment * alignment;
 }
@@ -89,6 +97,7 @@ Allocation Allocator::allocate_dedicated(VkDeviceSize size, uint32_t type, VkBuf
 
 Allocation Allocator::allocate(const VkMemoryRequirements& requirements, MemoryUsage usage,
                                bool dedicated) {
+    fail_if_injected(requirements.size);
     std::lock_guard lock(mutex_);
     const uint32_t type = find_memory_type(requirements.memoryTypeBits, usage);
     if (dedicated || requirements.size > dedicated_threshold)
@@ -166,6 +175,7 @@ Allocation Allocator::allocate_for(VkBuffer buffer, MemoryUsage usage) {
     const VkMemoryRequirements& r = requirements.memoryRequirements;
     if (dedicated.requiresDedicatedAllocation || dedicated.prefersDedicatedAllocation ||
         r.size > dedicated_threshold) {
+        fail_if_injected(r.size);
         std::lock_guard lock(mutex_);
         a = allocate_dedicated(r.size, find_memory_type(r.memoryTypeBits, usage), buffer, VK_NULL_HANDLE);
     } else {
@@ -189,6 +199,7 @@ Allocation Allocator::allocate_for(VkImage image, MemoryUsage usage) {
     const VkMemoryRequirements& r = requirements.memoryRequirements;
     if (dedicated.requiresDedicatedAllocation || dedicated.prefersDedicatedAllocation ||
         r.size > dedicated_threshold) {
+        fail_if_injected(r.size);
         std::lock_guard lock(mutex_);
         a = allocate_dedicated(r.size, find_memory_type(r.memoryTypeBits, usage), VK_NULL_HANDLE, image);
     } else {

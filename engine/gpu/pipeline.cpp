@@ -5,6 +5,7 @@
 
 #include "core/result.h"
 #include "gpu/context.h"
+#include "gpu/fault_injection.h"
 
 namespace facet {
 
@@ -155,8 +156,9 @@ Pipeline Pipeline::compute(Context& context, std::span<const uint32_t> spirv,
     info.stage.module = module.module;
     info.stage.pName = "main";
     info.layout = p.layout_.handle();
-    vk_check(vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline_),
-             ("vkCreateComputePipelines " + name).c_str());
+    VkResult r = take_injected_fault(FaultSite::pipeline);
+    if (r == VK_SUCCESS) r = vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline_);
+    vk_check(r, ("vkCreateComputePipelines " + name).c_str());
     context.set_name(p.pipeline_, VK_OBJECT_TYPE_PIPELINE, name);
     return p;
 }
@@ -239,8 +241,9 @@ Pipeline Pipeline::graphics(Context& context, const GraphicsDesc& desc, const st
     info.pColorBlendState = &blend;
     info.pDynamicState = &dynamic;
     info.layout = p.layout_.handle();
-    vk_check(vkCreateGraphicsPipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline_),
-             ("vkCreateGraphicsPipelines " + name).c_str());
+    VkResult r = take_injected_fault(FaultSite::pipeline);
+    if (r == VK_SUCCESS) r = vkCreateGraphicsPipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline_);
+    vk_check(r, ("vkCreateGraphicsPipelines " + name).c_str());
     context.set_name(p.pipeline_, VK_OBJECT_TYPE_PIPELINE, name);
     return p;
 }

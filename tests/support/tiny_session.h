@@ -1,0 +1,56 @@
+#pragma once
+// The smallest complete piece of work Facet does: bake a built-in sky and render the
+// built-in spheres with it, at sizes lavapipe gets through in a fraction of a second.
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "gpu/context.h"
+#include "render_job.h"
+
+namespace facet::test {
+
+inline RenderJob tiny_job() {
+    RenderJob job;
+    job.model = "builtin:spheres";
+    job.env = "builtin:sky";
+    job.env_width = 64;
+    job.ibl.cube_size = 16;
+    job.ibl.irradiance.size = 8;
+    job.ibl.irradiance.source_size = 8;
+    job.ibl.specular.levels = 4;
+    job.ibl.specular.sample_count = 64;
+    job.ibl.lut.size = 16;
+    job.ibl.lut.sample_count = 64;
+    job.frame.width = 32;
+    job.frame.height = 32;
+    return job;
+}
+
+struct TinyResult {
+    std::string error;        // empty on success
+    VkResult vk_result = VK_SUCCESS;
+    double mean_radiance = 0;  // of the rendered HDR image
+};
+
+// Bake + render + teardown of everything but the context. Errors come back as a Result
+// or as a VulkanError thrown from deep inside; both are caught and returned.
+inline TinyResult run_tiny_session(Context& context, const RenderJob& job = tiny_job()) {
+    TinyResult out;
+    try {
+        auto session = RenderSession::create(context, job);
+        if (!session) return {session.error().message, session.error().vk_result};
+        auto images = (*session)->render_frame();
+        if (!images) return {images.error().message, images.error().vk_result};
+        double sum = 0;
+        for (size_t i = 0; i < images->hdr.size(); i += 4) sum += images->hdr[i] + images->hdr[i + 1] + images->hdr[i + 2];
+        out.mean_radiance = sum / (3.0 * images->hdr.size() / 4);
+        if (!std::isfinite(out.mean_radiance)) out.error = "non-finite image";
+    } catch (const VulkanError& e) {
+        out.error = e.what();
+        out.vk_result = e.result();
+    }
+    return out;
+}
+
+}  // namespace facet::test
