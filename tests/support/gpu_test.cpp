@@ -5,8 +5,36 @@
 
 namespace facet::test {
 
+namespace {
+
+std::unique_ptr<Context>& shared_context() {
+    static std::unique_ptr<Context> context;
+    return context;
+}
+
+// The shared context is destroyed after the last test of the process rather than at
+// exit, so that the validation layer's object tracking (every object must be destroyed
+// before its device) is checked for every GPU test executable.
+class SharedContextTeardown : public ::testing::Environment {
+public:
+    void TearDown() override {
+        std::unique_ptr<Context>& context = shared_context();
+        if (!context) return;
+        const uint32_t before = Context::process_validation_message_count();
+        context.reset();
+        EXPECT_EQ(Context::process_validation_message_count(), before)
+            << "Vulkan objects left undestroyed at teardown (validation messages above)";
+    }
+};
+
+[[maybe_unused]] ::testing::Environment* const teardown =
+    ::testing::AddGlobalTestEnvironment(new SharedContextTeardown);
+
+}  // namespace
+
 Context& gpu() {
-    static std::unique_ptr<Context> context = [] {
+    std::unique_ptr<Context>& context = shared_context();
+    if (!context) {
         ContextOptions options;
         options.validation = true;
         options.sync_validation = true;
@@ -15,8 +43,8 @@ Context& gpu() {
             ADD_FAILURE() << "cannot create a Vulkan context: " << created.error().message;
             std::abort();
         }
-        return std::move(created).value();
-    }();
+        context = std::move(created).value();
+    }
     return *context;
 }
 
