@@ -48,6 +48,13 @@ struct HostVulkan {
     bool debug_utils = false;
 };
 
+// Thread safety: a Context may be used from several threads at once for creating and
+// destroying resources, samplers and pipelines (Image, Buffer, Pipeline, ProgramCache
+// per thread), allocating device memory and submitting (submit_and_wait, GraphRun,
+// uploads and readbacks), which serialise on the one queue. Objects built on it (a
+// RenderGraph, GraphRun, ProgramCache, ShaderCompiler, RenderSession) belong to one
+// thread at a time. Several contexts may live in one process; fault injection and the
+// process-wide validation count are shared by them.
 class Context {
 public:
     static Result<std::unique_ptr<Context>> create(const ContextOptions& options = {});
