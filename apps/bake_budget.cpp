@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "ibl_measure.h"
+#include "interrupt.h"
 
 namespace facet {
 namespace {
@@ -40,7 +41,8 @@ Result<std::pair<Settings, BudgetChoice>> first_meeting(
 
 Result<Budget> choose_within_budget(Context& context, const EnvironmentSource& env, const IblSettings& base,
                                     double target, float rmin, float rmax,
-                                    const std::function<void(const std::string&)>& progress) {
+                                    const std::function<void(const std::string&)>& progress,
+                                    const ShaderCompilerOptions& compiler) {
     if (!(target > 0)) return Error{"--target-error must be positive"};
     if (!(rmin >= 0 && rmin <= rmax && rmax <= 1)) return Error{"--roughness must be A,B with 0 <= A <= B <= 1"};
     if (env.sky || env.image.rgba.empty()) return Error{"budget: the environment's texels are needed"};
@@ -49,7 +51,7 @@ Result<Budget> choose_within_budget(Context& context, const EnvironmentSource& e
     budget.roughness_min = rmin;
     budget.roughness_max = rmax;
     budget.settings = base;
-    IblMeasure measure(context, 1);
+    IblMeasure measure(context, 1, compiler);
     const test::Equirect e{env.width, env.height, env.image.rgba};
     auto stats_of = [](const ErrorStats& s) { return s.bad ? INFINITY : s.rel_rmse(); };
 
@@ -75,7 +77,10 @@ Result<Budget> choose_within_budget(Context& context, const EnvironmentSource& e
                 auto baked = measure.bake(env, settings, "irradiance");
                 if (!baked) return baked.error();
                 ErrorStats stats;
-                compare_cube(*baked, 0, [&](const test::Vec3& n) { return test::irradiance_over_pi(e, n); }, stats, 3);
+                compare_cube(*baked, 0, [&](const test::Vec3& n) {
+                    check_interrupt();  // each truth is a sum over every texel
+                    return test::irradiance_over_pi(e, n);
+                }, stats, 3);
                 return std::pair{stats_of(stats), baked->gpu_ms};
             },
             progress);
@@ -115,8 +120,10 @@ Result<Budget> choose_within_budget(Context& context, const EnvironmentSource& e
                     // Only the levels a lookup in [rmin, rmax] reads (trilinear: its neighbours).
                     const float step = 1.0f / float(baked->levels - 1);
                     if (r < rmin - step || r > rmax + step) continue;
-                    compare_cube(*baked, m, [&](const test::Vec3& n) { return test::prefiltered(table, n, r); }, stats,
-                                 3);
+                    compare_cube(*baked, m, [&](const test::Vec3& n) {
+                        check_interrupt();
+                        return test::prefiltered(table, n, r);
+                    }, stats, 3);
                 }
                 return std::pair{stats_of(stats), baked->gpu_ms};
             },

@@ -10,6 +10,7 @@
 
 #include "core/result.h"
 #include "ibl/ibl_bake.h"
+#include "shader/compiler.h"
 
 namespace facet {
 
@@ -33,6 +34,7 @@ struct Budget {
 // cheapest (by facet-bench sweep's timings) until one meets the target.
 Result<Budget> choose_within_budget(Context& context, const EnvironmentSource& env, const IblSettings& base,
                                     double target, float roughness_min, float roughness_max,
-                                    const std::function<void(const std::string&)>& progress = {});
+                                    const std::function<void(const std::string&)>& progress = {},
+                                    const ShaderCompilerOptions& compiler = {});
 
 }  // namespace facet

@@ -6,10 +6,12 @@
 #include <filesystem>
 
 #include "gpu/transfer.h"
+#include "interrupt.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/json_writer.h"
 #include "io/ktx2.h"
+#include "io/output_set.h"
 
 namespace facet {
 
@@ -154,7 +156,7 @@ const std::vector<const char*>& bake_output_names() {
     return names;
 }
 
-Status write_bake_files(const std::string& dir, const BakeDescription& d, const BakeResults& r) {
+Status stage_bake_files(OutputSet& outputs, const std::string& dir, const BakeDescription& d, const BakeResults& r) {
     for (const ImageTexels* t : {&r.environment, &r.irradiance, &r.specular, &r.lut})
         if (size_t bad = count_bad(*t))
             return Error{std::to_string(bad) + " baked values are NaN, Inf or negative; nothing was written"};
@@ -162,29 +164,31 @@ Status write_bake_files(const std::string& dir, const BakeDescription& d, const 
         if (fs::exists(fs::path(dir) / name))
             std::fprintf(stderr, "facet-bake: replacing %s\n", (fs::path(dir) / name).c_str());
     auto path = [&](const char* name) { return (fs::path(dir) / name).string(); };
-    // An interrupted bake must never look complete: the old bake.json goes first.
-    std::error_code ec;
-    fs::remove(path("bake.json"), ec);
+    // Each file goes to its temporary; the previous bake stays whole until the commit.
+    auto stage = [&](const char* name) {
+        check_interrupt();
+        return outputs.stage(path(name));
+    };
     const ImageDesc& e = r.environment.desc;
     const std::vector<float> env = as_floats(r.environment.levels[0]);
     for (const char* name : {"environment.exr", "environment.hdr"})
-        if (Status s = write_hdr_image(path(name), e.width, e.height, env); !s) return s;
+        if (Status s = write_hdr_image(stage(name), e.width, e.height, env); !s) return s;
     std::vector<uint8_t> preview(r.preview.levels[0].size());
     std::memcpy(preview.data(), r.preview.levels[0].data(), preview.size());
-    if (Status s = write_ldr_image(path("environment.png"), e.width, e.height, preview); !s) return s;
-    if (Status s = write_ktx2(path("specular.ktx2"), to_ktx2(r.specular, d)); !s) return s;
-    if (Status s = write_ktx2(path("irradiance.ktx2"), to_ktx2(r.irradiance, d)); !s) return s;
-    if (Status s = write_ktx2(path("brdf_lut.ktx2"), to_ktx2(r.lut, d)); !s) return s;
+    if (Status s = write_ldr_image(stage("environment.png"), e.width, e.height, preview); !s) return s;
+    if (Status s = write_ktx2(stage("specular.ktx2"), to_ktx2(r.specular, d)); !s) return s;
+    if (Status s = write_ktx2(stage("irradiance.ktx2"), to_ktx2(r.irradiance, d)); !s) return s;
+    if (Status s = write_ktx2(stage("brdf_lut.ktx2"), to_ktx2(r.lut, d)); !s) return s;
     // LUT preview: A, B and E_avg lie in [0, 1]; shown linearly, roughness 0 on the top row.
     const std::vector<float> lut = as_floats(r.lut.levels[0]);
     std::vector<uint8_t> lut_png(lut.size());
     for (size_t i = 0; i < lut.size(); ++i)
         lut_png[i] = i % 4 == 3 ? 255 : static_cast<uint8_t>(std::lround(std::clamp(lut[i], 0.0f, 1.0f) * 255.0f));
-    if (Status s = write_ldr_image(path("brdf_lut.png"), r.lut.desc.width, r.lut.desc.height, lut_png); !s) return s;
+    if (Status s = write_ldr_image(stage("brdf_lut.png"), r.lut.desc.width, r.lut.desc.height, lut_png); !s) return s;
     if (r.sh9.empty() && fs::exists(path("sh9.json"))) {
         std::fprintf(stderr, "facet-bake: removing %s (this bake does not use spherical harmonics)\n",
                      path("sh9.json").c_str());
-        fs::remove(path("sh9.json"), ec);
+        outputs.remove_with_commit(path("sh9.json"));
     }
     if (!r.sh9.empty()) {
         JsonWriter j;
@@ -202,10 +206,10 @@ Status write_bake_files(const std::string& dir, const BakeDescription& d, const 
             j.end_array();
         }
         j.end_array().end_object();
-        if (Status s = write_text_file(path("sh9.json"), j.str()); !s) return s;
+        if (Status s = write_text_file(stage("sh9.json"), j.str()); !s) return s;
     }
-    // bake.json last: its presence with a bake key marks a complete bake.
-    return write_text_file(path("bake.json"), bake_json(d, r));
+    // bake.json last: the set's marker, its presence with a bake key marks a complete bake.
+    return write_text_file(stage("bake.json"), bake_json(d, r));
 }
 
 }  // namespace facet

@@ -1,6 +1,6 @@
 #pragma once
 // facet-bake's outputs (design.md): reading the baked images back and writing the KTX2
-// files, previews and bake.json, each atomically.
+// files, previews and bake.json into one OutputSet, which the caller commits.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -15,6 +15,7 @@ namespace facet {
 
 class Context;
 class Image;
+class OutputSet;
 
 // Every level and layer of an image, as stored (RGBA32F or RGBA8).
 struct ImageTexels {
@@ -53,8 +54,9 @@ struct BakeDescription {
 // The files a finished bake leaves in its directory.
 const std::vector<const char*>& bake_output_names();
 
-// Writes all outputs; fails (naming the file) on the first that cannot be written, or
-// when any baked value is NaN, Inf or negative.
-Status write_bake_files(const std::string& dir, const BakeDescription& d, const BakeResults& r);
+// Writes every output to its temporary in `outputs` (bake.json last: the marker of a
+// complete bake); fails (naming the file) on the first that cannot be written, or when
+// any baked value is NaN, Inf or negative. A safe point between files (apps/interrupt.h).
+Status stage_bake_files(OutputSet& outputs, const std::string& dir, const BakeDescription& d, const BakeResults& r);
 
 }  // namespace facet

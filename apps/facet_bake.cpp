@@ -1,6 +1,8 @@
 // facet-bake: an environment -> the image-based-lighting data of design.md: the
 // prefiltered specular cube, the diffuse irradiance cube and the split-sum BRDF LUT
 // (KTX2), previews, and bake.json. All work is compute passes of one render graph.
+// The files appear together or not at all; SIGINT and SIGTERM stop it at the next safe
+// point with nothing written (apps/interrupt.h).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -14,7 +16,9 @@
 #include "bake_budget.h"
 #include "bake_files.h"
 #include "cli.h"
+#include "interrupt.h"
 #include "render_options.h"
+#include "shader_cache.h"
 #include "core/hash.h"
 #include "gpu/context.h"
 #include "gpu/transfer.h"
@@ -24,6 +28,7 @@
 #include "ibl/method_domain.h"
 #include "io/atomic_file.h"
 #include "io/environment_image.h"
+#include "io/output_set.h"
 #include "render/tonemap_preview.h"
 #include "shader/program_cache.h"
 
@@ -36,6 +41,7 @@ constexpr const char* program = "facet-bake";
 
 struct Options {
     std::string env, out_dir, device, graph_dot;
+    std::string shader_cache;  // empty: no on-disk shader cache
     uint32_t sky_width = 1024;
     uint32_t cube_size = 0;  // 0: input height / 2
     float exposure = 1.0f;
@@ -76,6 +82,7 @@ cli::Parser make_parser() {
         .option("--device", "NAME|INDEX", "Vulkan device (default: FACET_DEVICE, a GPU, else lavapipe)")
         .flag("--validation", "enable the Khronos validation layer")
         .option("--graph-dot", "FILE", "also write the compiled render graph as Graphviz dot");
+    add_shader_cache_option(p);
     return p;
 }
 
@@ -133,6 +140,7 @@ std::optional<Options> parse(int argc, char** argv) {
     o.device = a.get("--device");
     o.validation = a.has("--validation");
     o.graph_dot = a.get("--graph-dot");
+    o.shader_cache = shader_cache_dir(a);
     return o;
 }
 
@@ -187,18 +195,23 @@ int bake(const Options& o) {
     std::fprintf(stderr, "%s: %s (%ux%u) -> cube %u^2, %u specular levels, on %s\n", program, o.env.c_str(),
                  source->width, source->height, cube_size, specular.levels, context.device_name().c_str());
 
-    ShaderCompiler compiler;
+    ShaderCompilerOptions compiler_options;
+    compiler_options.disk_cache_dir = o.shader_cache;
+    ShaderCompiler compiler(compiler_options);
     ProgramCache programs(context, compiler);
     // Methods used outside their domain say so (bake.json and here).
     EnvironmentSource analysed = *source;
     if (Status st = materialize_environment(context, programs, analysed); !st) throw std::runtime_error(st.error().message);
+    pause_for_test("shaders");
+    check_interrupt();
     std::optional<Budget> budget;
     if (o.target_error > 0) {
         // The accuracy budget: the cheapest methods that meet the target, measured here.
         auto chosen = choose_within_budget(context, analysed, settings, o.target_error, o.roughness_min,
                                            o.roughness_max, [](const std::string& line) {
                                                std::fprintf(stderr, "%s: %s\n", program, line.c_str());
-                                           });
+                                               check_interrupt();
+                                           }, compiler_options);
         if (!chosen) throw std::runtime_error(chosen.error().message);
         budget = *chosen;
         settings = budget->settings;
@@ -233,8 +246,11 @@ int bake(const Options& o) {
         graph.export_buffer(sh9, {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                                   VK_ACCESS_2_TRANSFER_READ_BIT});
     CompiledGraph compiled = graph.compile();
+    OutputSet outputs;
     if (!o.graph_dot.empty())
-        if (Status s = write_text_file(o.graph_dot, compiled.to_dot()); !s) throw std::runtime_error(s.error().message);
+        if (Status s = write_text_file(outputs.stage(o.graph_dot), compiled.to_dot()); !s)
+            throw std::runtime_error(s.error().message);
+    check_interrupt();
 
     std::fprintf(stderr, "%s: running %zu passes\n", program, compiled.passes.size());
     auto run = std::make_unique<GraphRun>(context, compiled);
@@ -242,6 +258,8 @@ int bake(const Options& o) {
     run->submit_and_wait([&](uint32_t done, uint32_t total, const std::string& pass) {
         const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - passes_start).count();
         std::fprintf(stderr, "%s: [%u/%u] %-40s %6.2f s\n", program, done, total, pass.c_str(), s);
+        if (done == 1) pause_for_test("bake");
+        check_interrupt();
     });
     BakeResults results;
     results.timings = run->timings();
@@ -277,7 +295,8 @@ int bake(const Options& o) {
     d.cube_size = cube_size;
     d.exposure = o.exposure;
     d.wall_time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    if (Status s = write_bake_files(o.out_dir, d, results); !s) throw std::runtime_error(s.error().message);
+    if (Status s = stage_bake_files(outputs, o.out_dir, d, results); !s) throw std::runtime_error(s.error().message);
+    if (Status s = commit_outputs(outputs); !s) throw std::runtime_error(s.error().message);
 
     double gpu_ms = 0;
     for (const PassTiming& t : results.timings) {
@@ -292,5 +311,5 @@ int bake(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    return facet::cli::run_program(program, [&] { return parse(argc, argv); }, bake);
+    return facet::run_interruptible(program, [&] { return parse(argc, argv); }, bake);
 }

@@ -1,22 +1,27 @@
 // facet-render: a model under an environment and lights, rendered offscreen with the
 // forward PBR pass (split-sum image-based lighting baked in the same run) to a PNG
 // (tone-mapped, sRGB) or an EXR (linear, exposure applied), with NAME.json beside it
-// and, on request, one EXR per view (normal, position, D, F, G, diffuse, ...).
+// and, on request, one EXR per view (normal, position, D, F, G, diffuse, ...). The files
+// appear together or not at all; SIGINT and SIGTERM stop it at the next safe point with
+// nothing written (apps/interrupt.h).
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
 
 #include "cli.h"
+#include "interrupt.h"
 #include "core/result.h"
 #include "gpu/context.h"
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/json_writer.h"
+#include "io/output_set.h"
 #include "render_job.h"
 #include "render_options.h"
 #include "scene/builtin_scenes.h"
 #include "scene/material_presets.h"
+#include "shader_cache.h"
 
 namespace {
 
@@ -50,6 +55,7 @@ cli::Parser make_parser() {
         .option("--reference-samples", "N", "most samples per pixel (default 4096)")
         .option("--device", "NAME|INDEX", "Vulkan device (default: FACET_DEVICE, a GPU, else lavapipe)")
         .flag("--validation", "enable the Khronos validation layer");
+    add_shader_cache_option(p);
     return p;
 }
 
@@ -79,6 +85,7 @@ std::optional<Options> parse(int argc, char** argv) {
             uint32_t(cli::parse_int(a.get("--reference-samples"), "--reference-samples", 1, 1 << 20));
     o.device = a.get("--device");
     o.validation = a.has("--validation");
+    j.shader_cache_dir = shader_cache_dir(a);
     return o;
 }
 
@@ -156,7 +163,11 @@ int render(const Options& o) {
     if (!parent.empty() && !fs::is_directory(parent))
         throw std::runtime_error(o.out + ": the directory " + parent.string() + " does not exist");
     auto log = [](const std::string& line) { std::fprintf(stderr, "%s: %s\n", program, line.c_str()); };
-    auto session = RenderSession::create(context, o.job, log);
+    // Every progress line (one per bake pass) is a safe point.
+    auto session = RenderSession::create(context, o.job, [&](const std::string& line) {
+        log(line);
+        check_interrupt();
+    });
     if (!session) throw std::runtime_error(session.error().message);
     log("rendering " + std::to_string(o.job.frame.width) + "x" + std::to_string(o.job.frame.height) + " on " +
         context.device_name());
@@ -164,6 +175,8 @@ int render(const Options& o) {
     auto images = o.reference ? (*session)->render_reference(o.reference_settings, [&](const ReferenceStats& st) {
         std::fprintf(stderr, "%s: reference: %u samples per pixel, noise %.4f (target %.4f)\n", program, st.samples,
                      st.noise, o.reference_settings.noise_target);
+        pause_for_test("reference");
+        check_interrupt();
     }, &stats) : (*session)->render_frame();
     if (!images) throw std::runtime_error(images.error().message);
     if (o.reference && !stats.converged)
@@ -177,24 +190,32 @@ int render(const Options& o) {
     for (const std::string& f : view_files)
         if (fs::exists(f)) log("replacing " + f);
     if (fs::exists(o.out)) log("replacing " + o.out);
+    // Every file to its temporary, NAME.json (the marker) last; then all move into place.
+    OutputSet outputs;
+    auto stage = [&](const std::string& path) {
+        check_interrupt();
+        return outputs.stage(path);
+    };
     if (fs::path(o.out).extension() == ".exr") {
         std::vector<float> exposed = images->hdr;
         for (size_t i = 0; i < exposed.size(); ++i)
             if (i % 4 != 3) exposed[i] *= exposure;
-        if (Status s = write_hdr_image(o.out, images->width, images->height, exposed); !s)
+        if (Status s = write_hdr_image(stage(o.out), images->width, images->height, exposed); !s)
             throw std::runtime_error(s.error().message);
-    } else if (Status s = write_ldr_image(o.out, images->width, images->height, images->ldr); !s) {
+    } else if (Status s = write_ldr_image(stage(o.out), images->width, images->height, images->ldr); !s) {
         throw std::runtime_error(s.error().message);
     }
     for (size_t v = 0; v < images->views.size(); ++v)
-        if (Status s = write_hdr_image(view_files[v], images->width, images->height, images->views[v].second); !s)
+        if (Status s = write_hdr_image(stage(view_files[v]), images->width, images->height, images->views[v].second);
+            !s)
             throw std::runtime_error(s.error().message);
     std::vector<std::string> view_names_written;
     for (const std::string& f : view_files) view_names_written.push_back(fs::path(f).filename().string());
-    if (Status s = write_text_file(stem + ".json",
+    if (Status s = write_text_file(stage(stem + ".json"),
                                    describe(o, **session, *images, context.device_name(), view_names_written, stats));
         !s)
         throw std::runtime_error(s.error().message);
+    if (Status s = commit_outputs(outputs); !s) throw std::runtime_error(s.error().message);
     double gpu_ms = 0;
     for (const PassTiming& t : images->timings) {
         log("  " + t.name + ": " + std::to_string(t.time_ms) + " ms GPU");
@@ -208,5 +229,5 @@ int render(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    return facet::cli::run_program(program, [&] { return parse(argc, argv); }, render);
+    return facet::run_interruptible(program, [&] { return parse(argc, argv); }, render);
 }

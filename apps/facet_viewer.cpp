@@ -5,6 +5,7 @@
 // again, F12 saves a screenshot. Scripted use (CI, tests): --script runs commands,
 // --frames N / --screenshot FILE are shorthands. The swapchain image is imported into
 // each frame's render graph: the display image is copied into it, then the panels drawn.
+// SIGINT and SIGTERM close the window as Esc does (exit status 128 + the signal).
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -21,6 +22,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "cli.h"
+#include "interrupt.h"
 #include "gpu/context.h"
 #include "gpu/transfer.h"
 #include "graph/compiled_graph.h"
@@ -279,7 +281,14 @@ int run(const Options& o) {
     std::string screenshot;
     int frame = 0;
     double last = glfwGetTime();
+    int exit_status = 0;
     while (!glfwWindowShouldClose(window)) {
+        if (int sig = interrupt_signal()) {
+            // Between frames: the teardown below runs as after Esc.
+            exit_status = report_interrupted(Interrupted{sig}, "closing the window");
+            glfwSetWindowShouldClose(window, GLFW_TRUE);
+            break;
+        }
         // Script: apply commands until one asks for frames.
         const bool scripted = !o.script.empty();
         while (scripted && frames_left == 0 && screenshot.empty() && step < o.script.size()) {
@@ -498,11 +507,11 @@ int run(const Options& o) {
     ui.reset();
     swapchain.reset();
     log("rendered " + std::to_string(frame) + " frames");
-    return 0;
+    return exit_status;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    return facet::cli::run_program(program, [&] { return parse(argc, argv); }, run);
+    return facet::run_interruptible(program, [&] { return parse(argc, argv); }, run);
 }

@@ -8,6 +8,7 @@
 #include "gpu/transfer.h"
 #include "graph/compiled_graph.h"
 #include "graph/graph_run.h"
+#include "interrupt.h"
 
 namespace facet {
 namespace {
@@ -25,7 +26,8 @@ double median(std::vector<double> v) {
     return v.empty() ? 0 : v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
-IblMeasure::IblMeasure(Context& context, int runs) : context_(context), programs_(context, compiler_), runs_(runs) {}
+IblMeasure::IblMeasure(Context& context, int runs, const ShaderCompilerOptions& compiler)
+    : context_(context), compiler_(compiler), programs_(context, compiler_), runs_(runs) {}
 
 Result<Baked> IblMeasure::bake(const EnvironmentSource& env, IblSettings settings, const std::string& what) {
     settings.want_irradiance = what == "irradiance";
@@ -53,6 +55,7 @@ Result<Baked> IblMeasure::bake(const EnvironmentSource& env, IblSettings setting
             const auto now = std::chrono::steady_clock::now();
             if (!shared_pass(pass)) ms += std::chrono::duration<double, std::milli>(now - last).count();
             last = now;
+            check_interrupt();
         });
         times.push_back(ms);
         if (r + 1 < runs_) continue;

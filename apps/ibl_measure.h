@@ -48,7 +48,7 @@ struct Baked {
 
 class IblMeasure {
 public:
-    IblMeasure(Context& context, int runs);
+    IblMeasure(Context& context, int runs, const ShaderCompilerOptions& compiler = {});
     // Bakes `what` ("irradiance", "specular" or "lut") with `settings`, `runs` times.
     Result<Baked> bake(const EnvironmentSource& env, IblSettings settings, const std::string& what);
     Context& context() { return context_; }

@@ -146,6 +146,7 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
 
     ShaderCompilerOptions compiler_options;
     compiler_options.source_dir = job.shader_dir;
+    compiler_options.disk_cache_dir = job.shader_cache_dir;
     s->compiler = std::make_unique<ShaderCompiler>(compiler_options);
     s->programs = std::make_unique<ProgramCache>(context, *s->compiler);
     if (job.env != "none") {

@@ -36,6 +36,7 @@ struct RenderJob {
     float ibl_intensity = 1.0f;
     bool extract_lights = false;  // suns and lamps out of the map, shaded as disk lights
     std::string shader_dir;       // read shaders from here (hot reload); empty: FACET_SHADER_DIR or embedded
+    std::string shader_cache_dir; // on-disk SPIR-V cache (apps/shader_cache.h); empty: none
 };
 
 struct RenderedImages {

@@ -11,15 +11,22 @@ namespace facet {
 
 namespace fs = std::filesystem;
 
-Status write_atomically(const std::string& path, const std::function<Status(const std::string&)>& write) {
-    fs::path target(path);
-    // Hidden, per process, same extension. (Built with += : GCC 12 warns falsely on
-    // "literal" + std::string, PR 105651.)
+std::string temporary_path(const std::string& path, const char* kind) {
+    const fs::path target(path);
+    // Built with += : GCC 12 warns falsely on "literal" + std::string (PR 105651).
     std::string name = ".";
     name += target.stem().string();
-    name += ".partial-" + std::to_string(::getpid());
+    name += ".";
+    name += kind;
+    name += "-";
+    name += std::to_string(::getpid());
     name += target.extension().string();
-    fs::path temp = target.parent_path() / name;
+    return (target.parent_path() / name).string();
+}
+
+Status write_atomically(const std::string& path, const std::function<Status(const std::string&)>& write) {
+    const fs::path target(path);
+    const fs::path temp(temporary_path(path));
     auto discard = [&] {
         std::error_code ignored;
         fs::remove(temp, ignored);

@@ -16,7 +16,11 @@ namespace facet {
 namespace {
 
 // On-disk entry: a small header so a truncated or foreign file is recognised and
-// recompiled instead of reaching the driver.
+// recompiled instead of reaching the driver. An entry is served only when its length is
+// exactly the header's word count and the words hash to the header's checksum; anything
+// else (a writer killed halfway, a full disk, another program's file) is one warning, a
+// compile, and a rewrite. Entries appear by rename, so a reader never sees one growing;
+// a writer killed outright leaves at most "KEY.spv.partial-PID-N" beside them.
 struct DiskHeader {
     char magic[4] = {'F', 'S', 'P', 'V'};
     uint32_t word_count = 0;
@@ -65,9 +69,11 @@ void write_disk(const std::string& dir, uint64_t key, const std::vector<uint32_t
         std::ofstream out(temp, std::ios::binary);
         out.write(reinterpret_cast<const char*>(&header), sizeof header);
         out.write(reinterpret_cast<const char*>(words.data()), words.size() * 4);
+        out.close();  // the last bytes reach the file here, and may fail here (disk full)
         if (!out) {
             std::filesystem::remove(temp, ec);
-            log(LogLevel::warning, dir + ": cannot write to the shader cache");
+            static std::atomic<bool> warned{false};
+            if (!warned.exchange(true)) log(LogLevel::warning, dir + ": cannot write to the shader cache");
             return;
         }
     }
