@@ -67,6 +67,9 @@ std::string bake_json(const BakeDescription& d, const BakeResults& r) {
         .value("content_hash", d.content_hash)
         .value("width", r.environment.desc.width)
         .value("height", r.environment.desc.height)
+        .value("source_width", d.source_width)
+        .value("source_height", d.source_height)
+        .value("max_env_width", d.max_env_width)
         .value("sanitized_texels", int64_t(d.sanitized_texels))
         .end_object();
     j.begin_array("warnings");

@@ -33,6 +33,8 @@ struct BakeResults {
 struct BakeDescription {
     std::string input, content_hash, bake_key, device, version;
     uint64_t sanitized_texels = 0;
+    uint32_t source_width = 0, source_height = 0;  // the file's size; the bake's is the environment's
+    uint32_t max_env_width = 0;
     IrradianceSettings irradiance;
     SpecularSettings specular;
     BrdfLutSettings lut;

@@ -43,6 +43,7 @@ struct Options {
     std::string env, out_dir, device, graph_dot;
     std::string shader_cache;  // empty: no on-disk shader cache
     uint32_t sky_width = 1024;
+    uint32_t max_env_width = kDefaultMaxEnvironmentWidth;  // wider files are downsampled while read
     uint32_t cube_size = 0;  // 0: input height / 2
     float exposure = 1.0f;
     bool validation = false, sanitize = false, force = false;
@@ -73,6 +74,9 @@ cli::Parser make_parser() {
         .option("--lut-samples", "N", "GGX samples per LUT texel (default 2048)")
         .flag("--lut-height-correlated", "LUT with the height-correlated Smith term instead of Schlick-GGX")
         .option("--width", "N", "width of a built-in environment (default 1024, height N/2)")
+        .option("--max-env-width", "N", "downsample wider environment files to N x N/2 while reading them\n"
+                                         "                          (default " + std::to_string(kDefaultMaxEnvironmentWidth) +
+                                             "; a built-in's --width may not exceed it)")
         .option("--exposure", "E", "exposure of environment.png (default 1)")
         .flag("--sanitize", "replace NaN, Inf and negative texels of ENV with 0 instead of failing")
         .option("--target-error", "E", "accuracy budget: the cheapest methods whose measured relative RMS error\n"
@@ -118,8 +122,13 @@ std::optional<Options> parse(int argc, char** argv) {
     if (a.has("--lut-size")) o.lut.size = positive(a, "--lut-size", 4096);
     if (a.has("--lut-samples")) o.lut.sample_count = positive(a, "--lut-samples", 1 << 20);
     if (a.has("--lut-height-correlated")) o.lut.visibility = LutVisibility::height_correlated;
+    if (a.has("--max-env-width")) o.max_env_width = positive(a, "--max-env-width", int(kMaxEnvironmentSide) / 4);
     if (a.has("--width")) o.sky_width = positive(a, "--width", 16384);
+    else o.sky_width = std::min(o.sky_width, std::max(2u, o.max_env_width & ~1u));
     if (o.sky_width % 2) throw std::invalid_argument("--width must be even (the height is width / 2)");
+    if (o.sky_width > o.max_env_width)
+        throw std::invalid_argument("--width " + std::to_string(o.sky_width) + " is above --max-env-width " +
+                                    std::to_string(o.max_env_width) + " (raise both for a wider built-in environment)");
     if (a.has("--exposure")) {
         o.exposure = static_cast<float>(cli::parse_double(a.get("--exposure"), "--exposure"));
         if (o.exposure <= 0) throw std::invalid_argument("--exposure must be positive");
@@ -169,8 +178,12 @@ bool up_to_date(const std::string& dir, const std::string& key) {
 
 int bake(const Options& o) {
     const auto start = std::chrono::steady_clock::now();
-    auto source = resolve_environment(o.env, o.sky_width, o.sanitize);
+    auto source = resolve_environment(o.env, o.sky_width, {o.sanitize, o.max_env_width});
     if (!source) throw std::runtime_error(source.error().message);
+    if (source->source_width != source->width)
+        std::fprintf(stderr, "%s: %s: %ux%u downsampled to %ux%u while reading (--max-env-width %u)\n", program,
+                     o.env.c_str(), source->source_width, source->source_height, source->width, source->height,
+                     o.max_env_width);
     if (source->image.sanitized_texels)
         std::fprintf(stderr, "%s: %s: replaced %llu NaN, Inf or negative texels with 0\n", program, o.env.c_str(),
                      static_cast<unsigned long long>(source->image.sanitized_texels));
@@ -188,10 +201,12 @@ int bake(const Options& o) {
                      o.out_dir.c_str());
         return 0;
     }
-    if (Status s = ensure_directory(o.out_dir); !s) throw std::runtime_error(s.error().message);
-
     const std::unique_ptr<Context> vulkan = start_vulkan(o.device, o.validation);
     Context& context = *vulkan;
+    // Sizes the device cannot hold fail before anything is created or written.
+    if (Status fits = check_ibl_fits(context, *source, settings); !fits)
+        throw std::runtime_error(fits.error().message + " (--size, --irradiance-size and --lut-size set these)");
+    if (Status s = ensure_directory(o.out_dir); !s) throw std::runtime_error(s.error().message);
     std::fprintf(stderr, "%s: %s (%ux%u) -> cube %u^2, %u specular levels, on %s\n", program, o.env.c_str(),
                  source->width, source->height, cube_size, specular.levels, context.device_name().c_str());
 
@@ -200,8 +215,14 @@ int bake(const Options& o) {
     ShaderCompiler compiler(compiler_options);
     ProgramCache programs(context, compiler);
     // Methods used outside their domain say so (bake.json and here).
-    EnvironmentSource analysed = *source;
-    if (Status st = materialize_environment(context, programs, analysed); !st) throw std::runtime_error(st.error().message);
+    // A file's texels are analysed where they are; only a procedural sky is rendered into a copy.
+    std::optional<EnvironmentSource> sky_texels;
+    if (source->sky) {
+        sky_texels = *source;
+        if (Status st = materialize_environment(context, programs, *sky_texels); !st)
+            throw std::runtime_error(st.error().message);
+    }
+    const EnvironmentSource& analysed = sky_texels ? *sky_texels : *source;
     pause_for_test("shaders");
     check_interrupt();
     std::optional<Budget> budget;
@@ -223,13 +244,16 @@ int bake(const Options& o) {
     const std::vector<std::string> warnings =
         method_warnings(environment_stats(analysed.image.rgba, analysed.width, analysed.height), settings);
     for (const std::string& w : warnings) std::fprintf(stderr, "%s: warning: %s\n", program, w.c_str());
-    IblBake ibl(context, programs);
+    auto ibl = std::make_unique<IblBake>(context, programs);
     RenderGraph graph;
     auto check = [](auto result) {
         if (!result) throw std::runtime_error(result.error().message);
         return *result;
     };
-    const IblImages images = check(ibl.add_passes(graph, *source, settings));
+    const IblImages images = check(ibl->add_passes(graph, *source, settings));
+    // The staging buffer holds the texels now; the bake reads them back from the GPU.
+    std::vector<float>().swap(source->image.rgba);
+    sky_texels.reset();
     ImageDesc preview_desc;
     preview_desc.format = VK_FORMAT_R8G8B8A8_UNORM;
     preview_desc.width = source->width;
@@ -273,11 +297,17 @@ int bake(const Options& o) {
         results.sh9.resize(bytes.size() / sizeof(float));
         std::memcpy(results.sh9.data(), bytes.data(), bytes.size());
     }
+    // Everything is read back: the GPU's copies and the upload go before the files are written.
+    run.reset();
+    ibl.reset();
 
     BakeDescription d;
     d.input = o.env;
     d.content_hash = source->content_hash;
     d.sanitized_texels = source->image.sanitized_texels;
+    d.source_width = source->source_width;
+    d.source_height = source->source_height;
+    d.max_env_width = o.max_env_width;
     d.bake_key = key;
     d.device = context.device_name();
     d.version = FACET_VERSION;

@@ -116,7 +116,8 @@ std::string describe(const Options& o, const RenderSession& session, const Rende
     j.begin_object("environment");
     if (const EnvironmentSource* env = session.environment())
         j.value("source", env->name).value("content_hash", env->content_hash).value("width", env->width)
-            .value("height", env->height).value("ibl_intensity", double(o.job.ibl_intensity));
+            .value("height", env->height).value("source_width", env->source_width)
+            .value("source_height", env->source_height).value("ibl_intensity", double(o.job.ibl_intensity));
     else
         j.value("source", "none");
     j.end_object();

@@ -9,10 +9,12 @@
 #include <sstream>
 
 #include "gpu/context.h"
+#include "gpu/device_limits.h"
 #include "gpu/transfer.h"
 #include "graph/compiled_graph.h"
 #include "ibl/light_extraction.h"
 #include "ibl/method_domain.h"
+#include "render/frame_budget.h"
 #include "render/gpu_scene.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
@@ -103,7 +105,8 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
         if (!preset)
             return Error{"--preset: unknown preset '" + *job.preset + "' (" + material_preset_names() + ")"};
     }
-    auto scene = job.model.rfind("builtin:", 0) == 0 ? builtin_scene(job.model, preset) : load_gltf(job.model);
+    auto scene = job.model.rfind("builtin:", 0) == 0 ? builtin_scene(job.model, preset)
+                                                      : load_gltf(job.model, job.model_limits);
     if (!scene) return scene.error();
     if (preset && !is_builtin_scene(job.model)) apply_material_preset(*scene, *preset);
     if (progress)
@@ -144,15 +147,22 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
         }
     }
 
+    // A frame the device cannot hold fails before the model is uploaded and the lighting baked.
+    if (Status fits = check_frame_fits(context, s->frame); !fits) return fits.error();
+
     ShaderCompilerOptions compiler_options;
     compiler_options.source_dir = job.shader_dir;
     compiler_options.disk_cache_dir = job.shader_cache_dir;
     s->compiler = std::make_unique<ShaderCompiler>(compiler_options);
     s->programs = std::make_unique<ProgramCache>(context, *s->compiler);
     if (job.env != "none") {
-        auto env = resolve_environment(job.env, job.env_width, job.sanitize);
+        auto env = resolve_environment(job.env, job.env_width, {job.sanitize, job.max_env_width});
         if (!env) return env.error();
         s->env = std::move(env).value();
+        if (s->env->source_width != s->env->width)
+            say(job.env + ": " + std::to_string(s->env->source_width) + "x" + std::to_string(s->env->source_height) +
+                " downsampled to " + std::to_string(s->env->width) + "x" + std::to_string(s->env->height) +
+                " while reading (--max-env-width " + std::to_string(job.max_env_width) + ")");
         if (s->env->image.sanitized_texels)
             say(job.env + ": replaced " + std::to_string(s->env->image.sanitized_texels) +
                 " NaN, Inf or negative texels with 0");
@@ -232,6 +242,7 @@ Result<RenderedImages> RenderSession::render_frame(bool pass_by_pass) {
     graph.export_image(images->ldr, readable);
     for (auto& [view, handle] : images->views) graph.export_image(handle, readable);
     CompiledGraph compiled = graph.compile();
+    if (Status fits = check_graph_fits(context, compiled); !fits) return fits.error();
     GraphRun run(context, compiled);
     std::vector<PassTiming> pass_wall;
     if (pass_by_pass) {

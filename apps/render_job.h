@@ -14,6 +14,7 @@
 #include "ibl/ibl_bake.h"
 #include "render/forward_renderer.h"
 #include "render/reference_renderer.h"
+#include "scene/gltf_loader.h"
 #include "scene/scene.h"
 
 namespace facet {
@@ -25,6 +26,8 @@ struct RenderJob {
     std::string env = "builtin:sky";  // "none": no image-based lighting
     std::optional<std::string> preset;
     uint32_t env_width = 1024;  // built-in environments
+    uint32_t max_env_width = kDefaultMaxEnvironmentWidth;  // wider files are downsampled while read
+    GltfLimits model_limits;    // memory budget of a glTF model (scene/gltf_loader.h)
     bool sanitize = false;
     IblSettings ibl;
     FrameSettings frame;  // camera: see below; lights: the scene's plus extra_lights

@@ -3,7 +3,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "io/environment_image.h"
 #include "scene/builtin_scenes.h"
+#include "scene/gltf_loader.h"
 #include "scene/material_presets.h"
 
 namespace facet {
@@ -43,6 +45,10 @@ void add_render_options(cli::Parser& p) {
                 "IBL specular lookup along R (default) or bent towards n for rough lobes (Frostbite)")
         .option("--ibl-intensity", "S", "scale of the image-based lighting (default 1)")
         .option("--env-width", "N", "width of a built-in environment (default 1024)")
+        .option("--max-env-width", "N", "downsample wider environment files to N x N/2 while reading them (default " +
+                                            std::to_string(kDefaultMaxEnvironmentWidth) + ")")
+        .option("--max-texture-size", "N", "downsample larger model textures to fit N x N while decoding them (default " +
+                                               std::to_string(GltfLimits{}.max_texture_size) + ")")
         .option("--ibl-size", "N", "cube face size of the bake (default: environment height / 2)")
         .option("--ibl-samples", "N", "GGX samples per texel for smooth specular levels (default 1024)")
         .flag("--sanitize", "replace NaN, Inf and negative environment texels with 0 instead of failing");
@@ -107,10 +113,20 @@ void parse_render_options(const cli::Parsed& a, RenderJob& j) {
         j.frame.dominant_direction = d == "dominant";
     }
     if (a.has("--ibl-intensity")) j.ibl_intensity = number_option(a, "--ibl-intensity", 0.0f, 1e6f);
+    if (a.has("--max-env-width"))
+        j.max_env_width = uint32_t(cli::parse_int(a.get("--max-env-width"), "--max-env-width", 1, 16384));
     if (a.has("--env-width")) {
         j.env_width = uint32_t(cli::parse_int(a.get("--env-width"), "--env-width", 2, 16384));
         if (j.env_width % 2) throw std::invalid_argument("--env-width must be even");
+        if (j.env_width > j.max_env_width)
+            throw std::invalid_argument("--env-width " + std::to_string(j.env_width) + " is above --max-env-width " +
+                                        std::to_string(j.max_env_width) + " (raise both for a wider built-in environment)");
+    } else {
+        j.env_width = std::min(j.env_width, std::max(2u, j.max_env_width & ~1u));
     }
+    if (a.has("--max-texture-size"))
+        j.model_limits.max_texture_size =
+            uint32_t(cli::parse_int(a.get("--max-texture-size"), "--max-texture-size", 1, 16384));
     if (a.has("--ibl-size")) j.ibl.cube_size = uint32_t(cli::parse_int(a.get("--ibl-size"), "--ibl-size", 1, 8192));
     if (a.has("--ibl-samples"))
         j.ibl.specular.sample_count = uint32_t(cli::parse_int(a.get("--ibl-samples"), "--ibl-samples", 1, 1 << 20));

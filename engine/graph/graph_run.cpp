@@ -5,6 +5,7 @@
 
 #include "core/result.h"
 #include "gpu/context.h"
+#include "gpu/device_limits.h"
 
 namespace facet {
 
@@ -48,6 +49,9 @@ GraphRun::~GraphRun() {
 }
 
 void GraphRun::allocate() {
+    // Sizes no device holds fail here, by name, rather than half way through allocating.
+    if (Status fits = check_graph_fits(context_, compiled_); !fits)
+        throw VulkanError(VK_ERROR_OUT_OF_DEVICE_MEMORY, "render graph: " + fits.error().message);
     images_.resize(compiled_.physical_images.size());
     for (size_t p = 0; p < images_.size(); ++p) {
         const PhysicalResource& phys = compiled_.physical_images[p];

@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "gpu/context.h"
+#include "gpu/device_limits.h"
 #include "gpu/resources.h"
 #include "graph/compiled_graph.h"
 #include "graph/graph_run.h"
@@ -16,7 +17,8 @@ namespace facet {
 
 std::string builtin_environment_names() { return "builtin:sky, builtin:white"; }
 
-Result<EnvironmentSource> resolve_environment(const std::string& name, uint32_t builtin_width, bool sanitize) {
+Result<EnvironmentSource> resolve_environment(const std::string& name, uint32_t builtin_width,
+                                              const EnvironmentLoadOptions& file_options) {
     EnvironmentSource source;
     source.name = name;
     if (name == "builtin:sky") source.sky = ProceduralSky{};
@@ -26,17 +28,24 @@ Result<EnvironmentSource> resolve_environment(const std::string& name, uint32_t 
     if (source.sky) {
         if (builtin_width < 2 || builtin_width % 2)
             return Error{name + ": the width of a built-in environment must be even and at least 2"};
+        if (builtin_width > file_options.max_width)
+            return Error{name + ": a width of " + std::to_string(builtin_width) +
+                         " is above the largest environment width allowed, " + std::to_string(file_options.max_width)};
         source.content_hash = source.sky->content_hash();
         source.width = builtin_width;
         source.height = builtin_width / 2;
+        source.source_width = source.width;
+        source.source_height = source.height;
         return source;
     }
-    auto image = load_environment(name, {sanitize});
+    auto image = load_environment(name, file_options);
     if (!image) return image.error();
     source.image = std::move(image).value();
     source.content_hash = source.image.content_hash;
     source.width = source.image.width;
     source.height = source.image.height;
+    source.source_width = source.image.source_width;
+    source.source_height = source.image.source_height;
     return source;
 }
 
@@ -68,6 +77,31 @@ IblSettings resolved_ibl_settings(const IblSettings& settings, const Environment
     if (!s.cube_size) s.cube_size = cube_size_for(source.height);
     s.specular.levels = std::min(s.specular.levels, full_mip_count(s.cube_size));
     return s;
+}
+
+Status check_ibl_fits(const Context& context, const EnvironmentSource& source, const IblSettings& s, bool whole_copy) {
+    ImageDesc equirect;
+    equirect.width = source.width;
+    equirect.height = source.height;
+    ImageDesc lut;
+    lut.width = lut.height = s.lut.size;
+    const std::string face = std::to_string(s.cube_size);
+    std::vector<NamedImage> images = {
+        {"the environment (" + std::to_string(source.width) + " wide)", equirect},
+        {"the environment cube (faces of " + face + ")", environment_cube_desc(s.cube_size, full_mip_count(s.cube_size))}};
+    if (whole_copy) {
+        const std::vector<NamedImage> whole = images;
+        images.insert(images.end(), whole.begin(), whole.end());
+    }
+    if (s.want_irradiance)
+        images.push_back({"the irradiance cube (faces of " + std::to_string(s.irradiance.size) + ")",
+                          environment_cube_desc(s.irradiance.size, 1)});
+    if (s.want_specular)
+        images.push_back({"the specular cube (faces of " + face + ")", environment_cube_desc(s.cube_size, s.specular.levels)});
+    if (s.want_lut) images.push_back({"the BRDF LUT (" + std::to_string(s.lut.size) + " square)", lut});
+    Status fits = check_images_fit(device_limits(context), images);
+    if (!fits) return Error{"image-based lighting: " + fits.error().message};
+    return Ok{};
 }
 
 IblBake::IblBake(Context& context, ProgramCache& programs)
@@ -121,6 +155,7 @@ Result<Uploaded> add_environment(RenderGraph& graph, Context& context, ProgramCa
 
 Result<IblImages> IblBake::add_passes(RenderGraph& graph, const EnvironmentSource& source, const IblSettings& s,
                                       const SpecularSplit& split) {
+    if (Status fits = check_ibl_fits(context_, source, s, split.whole && split.level > 0); !fits) return fits.error();
     IblImages out;
     auto main = add_environment(graph, context_, programs_, *equirect_sampler_, source, s.cube_size, staging_, "");
     if (!main) return main.error();

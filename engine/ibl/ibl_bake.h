@@ -28,12 +28,14 @@ struct EnvironmentSource {
     std::optional<ProceduralSky> sky;
     EnvironmentImage image;  // file texels (empty for a procedural sky)
     std::string content_hash;
-    uint32_t width = 0, height = 0;
+    uint32_t width = 0, height = 0;                // what the bake uses
+    uint32_t source_width = 0, source_height = 0;  // the file's (larger when downsampled on load)
 };
 
-// `builtin_width`: width of a procedural environment (height = width / 2).
+// `builtin_width`: width of a procedural environment (height = width / 2); it may not
+// exceed `file_options.max_width`, which files wider than it are downsampled to.
 Result<EnvironmentSource> resolve_environment(const std::string& name, uint32_t builtin_width = 1024,
-                                              bool sanitize = false);
+                                              const EnvironmentLoadOptions& file_options = {});
 std::string builtin_environment_names();  // "builtin:sky, builtin:white"
 
 // A procedural environment's texels, computed on the GPU and read back, so that CPU
@@ -53,6 +55,13 @@ struct IblSettings {
 
 // Sizes that follow from the input: the cube's face and the specular levels it allows.
 IblSettings resolved_ibl_settings(const IblSettings& settings, const EnvironmentSource& source);
+
+// The bake's images (`settings` as resolved) against the device's dimension and memory
+// limits (gpu/device_limits.h), so that a cube face, LUT or environment too large for
+// it is refused before anything is created; add_passes checks this too. With
+// `whole_copy`, light extraction's second environment and cube count as well.
+Status check_ibl_fits(const Context& context, const EnvironmentSource& source, const IblSettings& settings,
+                      bool whole_copy = false);
 
 struct IblImages {
     ImageHandle equirect;    // RGBA32F, the input

@@ -2,16 +2,85 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <functional>
+#include <optional>
 
 #include "core/hash.h"
+#include "io/box_downsample.h"
 
 namespace facet {
 
 namespace {
 
+// Rows read at once from a scanline file: a multiple of the 16-row chunks of ZIP and
+// PIZ compressed EXRs, so no chunk is decompressed twice.
+constexpr uint32_t kBandRows = 32;
+constexpr uint64_t kMaxBandBytes = uint64_t(256) << 20;
+
 const char* describe(float v) { return std::isnan(v) ? "NaN" : std::isinf(v) ? "Inf" : "negative"; }
+
+std::string size_text(uint64_t w, uint64_t h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+// One source row as RGB, checked (or sanitised) texel by texel.
+struct RowChecker {
+    const std::string& path;
+    uint32_t width;
+    int channels;
+    bool sanitize;
+    uint64_t sanitized = 0;
+    std::vector<float> rgb;
+
+    std::optional<Error> convert(const float* raw, uint32_t y) {
+        rgb.resize(size_t(width) * 3);
+        for (uint32_t x = 0; x < width; ++x) {
+            bool replaced = false;
+            for (int c = 0; c < 3; ++c) {
+                float v = raw[size_t(x) * channels + (channels == 1 ? 0 : c)];
+                if (!(std::isfinite(v) && v >= 0)) {
+                    if (!sanitize)
+                        return Error{path + ": texel (" + std::to_string(x) + ", " + std::to_string(y) + ") channel " +
+                                     "RGB"[c] + " is " + describe(v) + " (" + std::to_string(v) +
+                                     "); radiance must be finite and non-negative (sanitising replaces such texels)"};
+                    replaced = true;
+                    v = 0.0f;
+                }
+                rgb[size_t(x) * 3 + c] = v;
+            }
+            sanitized += replaced;
+        }
+        return std::nullopt;
+    }
+};
+
+// Reads the file a band of rows at a time and hands each row to `row` (raw channels).
+Status read_bands(OIIO::ImageInput& in, const OIIO::ImageSpec& spec, const std::string& path,
+                  const std::function<std::optional<Error>(const float*, uint32_t)>& row) {
+    const uint32_t w = uint32_t(spec.width), h = uint32_t(spec.height);
+    const bool tiled = spec.tile_width > 0;
+    const uint32_t band = tiled ? uint32_t(std::max(spec.tile_height, 1)) : std::min(kBandRows, h);
+    const uint64_t row_bytes = uint64_t(w) * spec.nchannels * sizeof(float);
+    if (row_bytes * band > kMaxBandBytes)
+        return Error{path + ": rows of " + std::to_string(band) + " (its tile height) at width " + std::to_string(w) +
+                     " would take " + std::to_string(row_bytes * band >> 20) + " MiB to read, more than the limit of " +
+                     std::to_string(kMaxBandBytes >> 20) + " MiB"};
+    std::vector<float> buffer(size_t(row_bytes * std::min(band, h) / sizeof(float)));
+    for (uint32_t y0 = 0; y0 < h; y0 += band) {
+        const uint32_t y1 = std::min(h, y0 + band);
+        const int ybegin = spec.y + int(y0), yend = spec.y + int(y1);
+        const bool ok = tiled ? in.read_tiles(0, 0, spec.x, spec.x + int(w), ybegin, yend, spec.z, spec.z + 1, 0,
+                                              spec.nchannels, OIIO::TypeDesc::FLOAT, buffer.data())
+                              : in.read_scanlines(0, 0, ybegin, yend, spec.z, 0, spec.nchannels, OIIO::TypeDesc::FLOAT,
+                                                  buffer.data());
+        if (!ok) return Error{path + ": the image data is damaged or truncated: " + in.geterror()};
+        for (uint32_t y = y0; y < y1; ++y)
+            if (auto e = row(buffer.data() + size_t(y - y0) * w * spec.nchannels, y)) return *e;
+    }
+    return Ok{};
+}
 
 }  // namespace
 
@@ -19,6 +88,7 @@ Result<EnvironmentImage> load_environment(const std::string& path, const Environ
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) return Error{path + ": no such file"};
     if (std::filesystem::is_directory(path, ec)) return Error{path + ": is a directory, not an image"};
+    // open() reads the header only: the size is known before any texel is.
     auto in = OIIO::ImageInput::open(path);
     if (!in) {
         std::string reason = OIIO::geterror();
@@ -27,49 +97,49 @@ Result<EnvironmentImage> load_environment(const std::string& path, const Environ
     }
     const OIIO::ImageSpec spec = in->spec();
     if (spec.width <= 0 || spec.height <= 0) return Error{path + ": the image has zero size"};
+    const uint64_t w = uint64_t(spec.width), h = uint64_t(spec.height);
+    if (w > kMaxEnvironmentSide || h > kMaxEnvironmentSide || w * h > kMaxEnvironmentTexels)
+        return Error{path + ": " + size_text(w, h) + " is larger than an environment may be (at most " +
+                     std::to_string(kMaxEnvironmentSide) + " texels a side and " + size_text(65536, 32768) +
+                     " texels in all); refused before reading it"};
     const int channels = spec.nchannels;
     if (channels != 1 && channels != 3 && channels != 4)
         return Error{path + ": " + std::to_string(channels) + " channels; an environment needs 1 (grey), 3 or 4"};
-    // Refuse sizes whose float copy alone would exceed 4 GiB, before allocating it.
-    const uint64_t texels = uint64_t(spec.width) * uint64_t(spec.height);
-    if (texels * 16 > (4ull << 30))
-        return Error{path + ": " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
-                     " is larger than the 4 GiB an environment may take"};
-    std::vector<float> raw(texels * channels);
-    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, raw.data())) {
-        std::string reason = in->geterror();
-        return Error{path + ": the image data is damaged or truncated: " + reason};
-    }
-    in->close();
+    if (spec.depth > 1) return Error{path + ": a volume image (depth " + std::to_string(spec.depth) + ")"};
 
     EnvironmentImage env;
-    env.width = static_cast<uint32_t>(spec.width);
-    env.height = static_cast<uint32_t>(spec.height);
-    env.rgba.resize(texels * 4);
-    for (uint64_t i = 0; i < texels; ++i) {
-        float rgb[3];
-        bool replaced = false;
-        for (int c = 0; c < 3; ++c) rgb[c] = raw[i * channels + (channels == 1 ? 0 : c)];
-        for (int c = 0; c < 3; ++c) {
-            float v = rgb[c];
-            if (std::isfinite(v) && v >= 0) continue;
-            if (!options.sanitize) {
-                const uint64_t x = i % env.width, y = i / env.width;
-                return Error{path + ": texel (" + std::to_string(x) + ", " + std::to_string(y) + ") channel " +
-                             "RGB"[c] + " is " + describe(v) + " (" + std::to_string(v) +
-                             "); radiance must be finite and non-negative (sanitising replaces such texels)"};
-            }
-            replaced = true;
-            rgb[c] = 0.0f;
-        }
-        env.sanitized_texels += replaced;
-        for (int c = 0; c < 3; ++c) env.rgba[i * 4 + c] = rgb[c];
-        env.rgba[i * 4 + 3] = 1.0f;
-    }
-    Hash64 h;
-    h.add(&env.width, sizeof env.width).add(&env.height, sizeof env.height);
-    h.add(env.rgba.data(), env.rgba.size() * sizeof(float));
-    env.content_hash = h.hex();
+    env.source_width = uint32_t(w);
+    env.source_height = uint32_t(h);
+    const uint32_t max_width = std::max(options.max_width, 1u);
+    const Size2 size = fit_within(env.source_width, env.source_height, max_width, std::max(max_width / 2, 1u));
+    env.width = size.width;
+    env.height = size.height;
+    env.rgba.assign(size_t(env.width) * env.height * 4, 1.0f);
+
+    RowChecker checker{path, env.source_width, channels, options.sanitize};
+    auto store = [&](uint32_t y, auto value) {
+        float* out = &env.rgba[size_t(y) * env.width * 4];
+        for (uint32_t x = 0; x < env.width; ++x)
+            for (int c = 0; c < 3; ++c) out[size_t(x) * 4 + c] = float(value(x, c));
+    };
+    std::optional<BoxDownsampler> box;
+    if (env.downsampled())
+        box.emplace(env.source_width, env.source_height, env.width, env.height, 3, RowWeights::equirect_solid_angle,
+                    [&](uint32_t y, const double* rgb) { store(y, [&](uint32_t x, int c) { return rgb[x * 3 + c]; }); });
+    Status read = read_bands(*in, spec, path, [&](const float* raw, uint32_t y) -> std::optional<Error> {
+        if (auto e = checker.convert(raw, y)) return e;
+        if (box) box->add_row(checker.rgb.data());
+        else store(y, [&](uint32_t x, int c) { return checker.rgb[x * 3 + c]; });
+        return std::nullopt;
+    });
+    if (!read) return read.error();
+    in->close();
+    env.sanitized_texels = checker.sanitized;
+
+    Hash64 hash;
+    hash.add(&env.width, sizeof env.width).add(&env.height, sizeof env.height);
+    hash.add(env.rgba.data(), env.rgba.size() * sizeof(float));
+    env.content_hash = hash.hex();
     return env;
 }
 

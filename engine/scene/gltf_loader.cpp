@@ -10,8 +10,10 @@
 #include <vector>
 
 #include "core/hash.h"
+#include "core/log.h"
 #include "scene/gltf_accessors.h"
 #include "scene/gltf_errors.h"
+#include "scene/gltf_images.h"
 #include "scene/gltf_materials.h"
 #include "scene/gltf_meshes.h"
 #include "scene/gltf_nodes.h"
@@ -23,7 +25,7 @@ using namespace gltf_detail;
 
 namespace {
 
-Scene convert(const tinygltf::Model& model) {
+Scene convert(const tinygltf::Model& model, const GltfLimits& limits) {
     // A required extension changes what the data means (compressed meshes, quantised
     // attributes, other image formats): loading on without it would draw garbage.
     for (const std::string& extension : model.extensionsRequired)
@@ -31,6 +33,9 @@ Scene convert(const tinygltf::Model& model) {
             fail("requires unsupported extension " + extension);
     Scene scene;
     validate_buffer_views(model);
+    const GeometryCount geometry = count_geometry(model, limits);
+    scene.vertices.reserve(size_t(geometry.vertices));
+    scene.indices.reserve(size_t(geometry.indices));
     for (size_t i = 0; i < model.samplers.size(); ++i) scene.samplers.push_back(convert_sampler(model.samplers[i], i));
     for (size_t i = 0; i < model.materials.size(); ++i) scene.materials.push_back(convert_material(model, i));
 
@@ -57,17 +62,30 @@ Scene convert(const tinygltf::Model& model) {
 
 }  // namespace
 
-Result<Scene> load_gltf(const std::string& path) {
+Result<Scene> load_gltf(const std::string& path, const GltfLimits& limits) {
     try {
-        std::vector<uint8_t> bytes = read_file(path);
-        EncodedImages encoded;
-        tinygltf::Model model = parse(path, bytes, encoded);
-        Scene scene = convert(model);
-        // Images last: the cheap structural checks above fail faster on broken files.
-        for (size_t i = 0; i < model.images.size(); ++i) scene.images.push_back(decode_image(model, i, encoded));
-
+        FileBudget budget{limits.max_file_bytes};
+        std::vector<uint8_t> bytes = read_file(path, budget);
         Hash64 hash;
         hash.add(bytes.data(), bytes.size());
+        EncodedImages encoded;
+        tinygltf::Model model = parse(path, bytes, encoded, budget);
+        std::vector<uint8_t>().swap(bytes);  // tinygltf copied what it needs
+        Scene scene = convert(model, limits);
+        // Images last: the cheap structural checks above fail faster on broken files.
+        const std::vector<ImagePlan> plans = plan_images(model, encoded, scene, limits);
+        for (size_t i = 0; i < model.images.size(); ++i) {
+            scene.images.push_back(decode_image(model, i, encoded, plans[i]));
+            encoded.erase(int(i));
+            const TextureImage& image = scene.images.back();
+            if (image.width != image.source_width || image.height != image.source_height)
+                log(LogLevel::warning, path + ": image '" + image.name + "' " + std::to_string(image.source_width) +
+                                           "x" + std::to_string(image.source_height) + " downsampled to " +
+                                           std::to_string(image.width) + "x" + std::to_string(image.height) +
+                                           " (textures are kept at most " + std::to_string(limits.max_texture_size) +
+                                           " a side)");
+        }
+
         for (const tinygltf::Buffer& buffer : model.buffers) hash.add(buffer.data.data(), buffer.data.size());
         for (const TextureImage& image : scene.images) hash.add(image.rgba.data(), image.rgba.size());
         scene.content_hash = hash.hex();

@@ -1,19 +1,13 @@
 #include "scene/gltf_materials.h"
 
-#include <climits>
 #include <cstdint>
-#include <cstring>
-#include <filesystem>
 #include <string>
 
-#include "scene/gltf_accessors.h"
 #include "scene/gltf_errors.h"
 
 namespace facet::gltf_detail {
 
 namespace {
-
-namespace fs = std::filesystem;
 
 TextureRef texture_ref(const tinygltf::Model& model, int texture, int tex_coord, const std::string& where,
                        const char* slot) {
@@ -44,11 +38,6 @@ uint32_t wrap_mode(int gl_wrap, const std::string& where) {
     }
 }
 
-std::string image_name(const tinygltf::Image& image, size_t index) {
-    if (!image.uri.empty() && image.uri.rfind("data:", 0) != 0) return fs::path(image.uri).filename().string();
-    if (!image.name.empty()) return image.name;
-    return "image " + std::to_string(index);
-}
 
 }  // namespace
 
@@ -118,58 +107,6 @@ TextureSampler convert_sampler(const tinygltf::Sampler& s, size_t index) {
     }
     out.wrap_u = wrap_mode(s.wrapS, where);
     out.wrap_v = wrap_mode(s.wrapT, where);
-    return out;
-}
-
-TextureImage decode_image(const tinygltf::Model& model, size_t index, const EncodedImages& encoded) {
-    const tinygltf::Image& image = model.images[index];
-    TextureImage out;
-    out.name = image_name(image, index);
-    std::string where = "image '" + out.name + "'";
-    const uint8_t* bytes = nullptr;
-    size_t size = 0;
-    if (image.bufferView >= 0) {
-        if (!in_range(image.bufferView, model.bufferViews.size()))
-            fail(where + ": bufferView " + std::to_string(image.bufferView) + " out of range");
-        const tinygltf::BufferView& view = model.bufferViews[size_t(image.bufferView)];  // validated
-        bytes = model.buffers[size_t(view.buffer)].data.data() + view.byteOffset;
-        size = view.byteLength;
-    } else if (auto it = encoded.find(int(index)); it != encoded.end()) {
-        bytes = it->second.data();
-        size = it->second.size();
-    } else {
-        fail(where + ": cannot read '" + image.uri + "'");
-    }
-    if (size == 0 || size > size_t(INT_MAX)) fail(where + " could not be decoded: it is empty or too large");
-
-    // tinygltf's stb_image decoder; with no options it expands every image to 4 channels.
-    tinygltf::Image decoded;
-    std::string err, warn;
-    if (!tinygltf::LoadImageData(&decoded, int(index), &err, &warn, 0, 0, bytes, int(size), nullptr))
-        fail(where + " could not be decoded (PNG or JPEG expected)");
-    size_t channels = size_t(decoded.component);
-    size_t bytes_per_channel = decoded.bits == 16 ? 2 : 1;
-    size_t pixels = size_t(decoded.width) * size_t(decoded.height);
-    if (decoded.width <= 0 || decoded.height <= 0 || channels < 1 || channels > 4 ||
-        (decoded.bits != 8 && decoded.bits != 16) || decoded.image.size() != pixels * channels * bytes_per_channel)
-        fail(where + " could not be decoded: unexpected decoder output");
-    out.width = uint32_t(decoded.width);
-    out.height = uint32_t(decoded.height);
-    out.rgba.resize(pixels * 4);
-    for (size_t p = 0; p < pixels; ++p) {
-        uint8_t texel[4] = {0, 0, 0, 255};
-        for (size_t c = 0; c < channels; ++c) {
-            size_t at = (p * channels + c) * bytes_per_channel;
-            texel[c] = bytes_per_channel == 2 ? uint8_t((load<uint16_t>(&decoded.image[at]) * 255u + 32767u) / 65535u)
-                                              : decoded.image[at];
-        }
-        // Grey (and grey + alpha) images replicate their value into RGB.
-        if (channels <= 2) {
-            if (channels == 2) texel[3] = texel[1];
-            texel[1] = texel[2] = texel[0];
-        }
-        std::memcpy(&out.rgba[p * 4], texel, 4);
-    }
     return out;
 }
 

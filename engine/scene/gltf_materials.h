@@ -1,5 +1,5 @@
 #pragma once
-// Internal to the glTF loader: materials, samplers and images.
+// Internal to the glTF loader: materials and samplers.
 #include <tiny_gltf.h>
 
 #include <cstddef>
@@ -12,9 +12,5 @@ namespace facet::gltf_detail {
 Material convert_material(const tinygltf::Model& model, size_t index);
 
 TextureSampler convert_sampler(const tinygltf::Sampler& s, size_t index);
-
-// Image `index` decoded to RGBA8, from its bufferView (expects validate_buffer_views to
-// have passed) or from the bytes parse kept for a uri image.
-TextureImage decode_image(const tinygltf::Model& model, size_t index, const EncodedImages& encoded);
 
 }  // namespace facet::gltf_detail

@@ -1,5 +1,6 @@
 #include "scene/gltf_meshes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -91,7 +92,37 @@ std::vector<uint32_t> triangle_indices(const tinygltf::Model& model, const tinyg
     return list;
 }
 
+// Declared counts, capped where they are absurd anyway (the accessor checks reject
+// those later with their own message), so sums cannot overflow.
+uint64_t declared_count(const tinygltf::Model& model, int accessor) {
+    if (!in_range(accessor, model.accessors.size())) return 0;
+    return std::min<uint64_t>(model.accessors[size_t(accessor)].count, kMaxElements + 1);
+}
+
+std::string budget_error(uint64_t count, const char* what, uint64_t limit, const char* unit) {
+    return "the scene's primitives have " + std::to_string(count) + " " + what + ", more than the limit of " +
+           std::to_string(limit) + " (" + unit + ")";
+}
+
 }  // namespace
+
+GeometryCount count_geometry(const tinygltf::Model& model, const GltfLimits& limits) {
+    GeometryCount total;
+    for (const tinygltf::Mesh& mesh : model.meshes)
+        for (const tinygltf::Primitive& primitive : mesh.primitives) {
+            auto position = primitive.attributes.find("POSITION");
+            const uint64_t vertices = position == primitive.attributes.end() ? 0 : declared_count(model, position->second);
+            const uint64_t raw = primitive.indices >= 0 ? declared_count(model, primitive.indices) : vertices;
+            const bool list = primitive.mode < 0 || primitive.mode == TINYGLTF_MODE_TRIANGLES;
+            total.vertices += vertices;
+            total.indices += list ? raw : raw >= 3 ? 3 * (raw - 2) : 0;
+        }
+    if (total.vertices > limits.max_vertices)
+        fail(budget_error(total.vertices, "vertices", limits.max_vertices, "48 bytes each"));
+    if (total.indices > limits.max_indices)
+        fail(budget_error(total.indices, "triangle-list indices", limits.max_indices, "4 bytes each"));
+    return total;
+}
 
 void load_primitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive, const std::string& where,
                     bool& needs_default_material, Scene& scene) {

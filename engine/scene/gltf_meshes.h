@@ -2,11 +2,21 @@
 // Internal to the glTF loader: mesh primitives into the Scene's vertex and index arrays.
 #include <tiny_gltf.h>
 
+#include <cstdint>
 #include <string>
 
+#include "scene/gltf_loader.h"
 #include "scene/scene.h"
 
 namespace facet::gltf_detail {
+
+struct GeometryCount {
+    uint64_t vertices = 0, indices = 0;  // triangle-list indices
+};
+
+// What the scene's primitives will take, from their accessors' declared counts alone,
+// checked against the limits before any vertex is read (fails naming what exceeds).
+GeometryCount count_geometry(const tinygltf::Model& model, const GltfLimits& limits);
 
 // Appends one primitive (triangles only) to scene.vertices, scene.indices and
 // scene.primitives. Expects scene.materials already converted, since a normal texture

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "gpu/device_limits.h"
 #include "scene/gltf_errors.h"
 
 namespace facet::gltf_detail {
@@ -35,7 +36,8 @@ uint32_t read_u32(const uint8_t* p) {
     return value;
 }
 
-// tinygltf checks the chunks too, but says "Invalid glTF binary." for everything.
+// tinygltf checks the chunks too, but says "Invalid glTF binary." for everything. The
+// chunk lengths are checked here before tinygltf copies the BIN chunk into a buffer.
 void check_glb_header(const std::vector<uint8_t>& bytes) {
     if (bytes.size() < 20) fail("truncated .glb: " + std::to_string(bytes.size()) + " bytes, less than its header");
     if (read_u32(&bytes[4]) != 2) fail(".glb version " + std::to_string(read_u32(&bytes[4])) + " is not 2");
@@ -43,7 +45,29 @@ void check_glb_header(const std::vector<uint8_t>& bytes) {
     if (length > bytes.size())
         fail("truncated .glb: its header says " + std::to_string(length) + " bytes, the file has " +
              std::to_string(bytes.size()));
-    if (20 + uint64_t(read_u32(&bytes[12])) > length) fail("truncated .glb: the JSON chunk runs past the end");
+    const uint64_t bin_at = 20 + uint64_t(read_u32(&bytes[12]));
+    if (bin_at > length) fail("truncated .glb: the JSON chunk runs past the end");
+    if (bin_at + 8 <= length && bin_at + 8 + uint64_t(read_u32(&bytes[bin_at])) > length)
+        fail("truncated .glb: its BIN chunk declares " + std::to_string(read_u32(&bytes[bin_at])) +
+             " bytes, more than the file holds after its JSON");
+}
+
+
+// Every external file's size against the budget before tinygltf reads it.
+bool read_within_budget(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+    FileBudget& budget = *static_cast<FileBudget*>(user);
+    std::error_code ec;
+    const uint64_t size = fs::file_size(path, ec);
+    if (!ec && budget.used + size > budget.limit) {
+        budget.refusal = fs::path(path).filename().string() + " is " + format_bytes(size) + "; with the " +
+                         format_bytes(budget.used) + " read before it the model exceeds its limit of " +
+                         format_bytes(budget.limit) + " of files";
+        if (err) *err = budget.refusal;
+        return false;
+    }
+    if (!tinygltf::ReadWholeFile(out, err, path, nullptr)) return false;
+    budget.used += out->size();
+    return true;
 }
 
 // tinygltf decodes images while it parses, before anything is validated, and for an
@@ -59,7 +83,7 @@ bool keep_encoded_image(tinygltf::Image* image, int index, std::string*, std::st
 
 }  // namespace
 
-std::vector<uint8_t> read_file(const std::string& path) {
+std::vector<uint8_t> read_file(const std::string& path, FileBudget& budget) {
     std::error_code ec;
     if (!fs::exists(path, ec)) fail("file not found");
     if (!fs::is_regular_file(path, ec)) fail("not a regular file");
@@ -67,17 +91,24 @@ std::vector<uint8_t> read_file(const std::string& path) {
     if (!in) fail("cannot open file");
     std::streamoff size = in.tellg();
     if (size < 0) fail("cannot read file");
+    if (uint64_t(size) > budget.limit)
+        fail("the file is " + format_bytes(uint64_t(size)) + ", more than the limit of " + format_bytes(budget.limit) +
+             " a model may read");
     if (uint64_t(size) > kMaxFileBytes) fail("file is larger than 2 GiB");
+    budget.used += uint64_t(size);
     std::vector<uint8_t> bytes(static_cast<size_t>(size));
     in.seekg(0);
     if (!in.read(reinterpret_cast<char*>(bytes.data()), size)) fail("cannot read file");
     return bytes;
 }
 
-tinygltf::Model parse(const std::string& path, const std::vector<uint8_t>& bytes, EncodedImages& encoded) {
+tinygltf::Model parse(const std::string& path, const std::vector<uint8_t>& bytes, EncodedImages& encoded,
+                      FileBudget& budget) {
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(keep_encoded_image, &encoded);
+    loader.SetFsCallbacks({tinygltf::FileExists, tinygltf::ExpandFilePath, read_within_budget, tinygltf::WriteWholeFile,
+                           &budget});
     std::string err, warn;
     std::string base_dir = fs::path(path).parent_path().string();
     bool ok = false;
@@ -93,6 +124,8 @@ tinygltf::Model parse(const std::string& path, const std::vector<uint8_t>& bytes
         ok = false;
         err = e.what();
     }
+    // A refused image is only a warning to tinygltf; the budget's reason wins either way.
+    if (!budget.refusal.empty()) fail(budget.refusal);
     if (!ok) fail("glTF parse failed: " + trim(err.empty() ? warn : err));
     return model;
 }

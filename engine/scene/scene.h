@@ -35,6 +35,7 @@ struct TextureImage {
     std::string name;  // file name or "image N"
     uint32_t width = 0, height = 0;
     std::vector<uint8_t> rgba;
+    uint32_t source_width = 0, source_height = 0;  // the file's size (larger when downsampled on load)
 };
 
 struct TextureRef {

@@ -1,0 +1,91 @@
+#include "io/texture_decode.h"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "io/box_downsample.h"
+
+namespace facet {
+
+namespace {
+
+double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+double linear_to_srgb(double c) { return c <= 0.0031308 ? c * 12.92 : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055; }
+
+uint8_t to_byte(double v) { return uint8_t(std::lround(std::clamp(v, 0.0, 1.0) * 255.0)); }
+
+}  // namespace
+
+Result<Rgba8Image> decode_texture_rows(const uint8_t* bytes, size_t size, const ImageHeader& header, uint32_t width,
+                                       uint32_t height, bool srgb) {
+    OIIO::Filesystem::IOMemReader proxy(bytes, size);
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);  // glTF's alpha is straight, keep it so
+    // OpenImageIO 2.4's plugins take the proxy from the configuration when given one.
+    OIIO::Filesystem::IOProxy* proxy_pointer = &proxy;
+    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy_pointer);
+    auto in = OIIO::ImageInput::open(header.format == "png" ? "texture.png" : "texture.jpg", &config, &proxy);
+    if (!in) return Error{"could not be decoded: " + OIIO::geterror()};
+    const OIIO::ImageSpec& spec = in->spec();
+    if (uint32_t(spec.width) != header.width || uint32_t(spec.height) != header.height || spec.nchannels < 1 ||
+        spec.nchannels > 4)
+        return Error{"could not be decoded: the decoder disagrees with the header about its size or channels"};
+    const uint32_t src_w = header.width, src_h = header.height, channels = uint32_t(spec.nchannels);
+    const bool has_alpha = channels == 2 || channels == 4;
+
+    // Source values are 8 or 16 bit: a table per code turns them into linear light.
+    const uint32_t codes = header.bytes_per_channel == 2 ? 65536 : 256;
+    std::vector<float> to_linear(codes);
+    for (uint32_t i = 0; i < codes; ++i) {
+        const double v = double(i) / (codes - 1);
+        to_linear[i] = float(srgb ? srgb_to_linear(v) : v);
+    }
+
+    Rgba8Image out{width, height, std::vector<uint8_t>(size_t(width) * height * 4)};
+    auto store = [&](uint32_t y, auto value) {
+        uint8_t* row = &out.rgba[size_t(y) * width * 4];
+        for (uint32_t x = 0; x < width; ++x)
+            for (uint32_t c = 0; c < 4; ++c) {
+                const double v = value(x, c);
+                row[x * 4 + c] = to_byte(srgb && c < 3 ? linear_to_srgb(v) : v);
+            }
+    };
+    std::optional<BoxDownsampler> box;
+    if (width != src_w || height != src_h)
+        box.emplace(src_w, src_h, width, height, 4, RowWeights::uniform,
+                    [&](uint32_t y, const double* rgba) { store(y, [&](uint32_t x, uint32_t c) { return rgba[x * 4 + c]; }); });
+
+    constexpr uint32_t kBandRows = 16;
+    const uint32_t band = std::min(kBandRows, src_h);
+    std::vector<float> raw(size_t(src_w) * channels * band);
+    std::vector<float> rgba(size_t(src_w) * 4);
+    for (uint32_t y0 = 0; y0 < src_h; y0 += band) {
+        const uint32_t y1 = std::min(src_h, y0 + band);
+        if (!in->read_scanlines(0, 0, spec.y + int(y0), spec.y + int(y1), 0, 0, int(channels), OIIO::TypeDesc::FLOAT,
+                                raw.data()))
+            return Error{"could not be decoded: " + in->geterror()};
+        for (uint32_t y = y0; y < y1; ++y) {
+            const float* r = &raw[size_t(y - y0) * src_w * channels];
+            for (uint32_t x = 0; x < src_w; ++x) {
+                const float* t = r + size_t(x) * channels;
+                auto code = [&](float v) { return to_linear[std::clamp(uint32_t(std::lround(v * (codes - 1))), 0u, codes - 1)]; };
+                const float grey = code(t[0]);
+                float* o = &rgba[size_t(x) * 4];
+                o[0] = grey;
+                o[1] = channels >= 3 ? code(t[1]) : grey;
+                o[2] = channels >= 3 ? code(t[2]) : grey;
+                o[3] = has_alpha ? t[channels - 1] : 1.0f;
+            }
+            if (box) box->add_row(rgba.data());
+            else store(y, [&](uint32_t x, uint32_t c) { return double(rgba[size_t(x) * 4 + c]); });
+        }
+    }
+    in->close();
+    return out;
+}
+
+}  // namespace facet
