@@ -17,6 +17,7 @@
 
 #include "gpu/context.h"
 #include "gpu/memory.h"
+#include "support/sanitizers.h"
 #include "support/tiny_session.h"
 
 namespace facet {
@@ -48,17 +49,6 @@ double floor_growth_per_cycle(const std::vector<double>& samples) {
     const double first = *std::min_element(samples.begin(), samples.begin() + window);
     const double last = *std::min_element(samples.end() - window, samples.end());
     return (last - first) / double(samples.size() - window);
-}
-
-bool under_address_sanitizer() {
-#if defined(__SANITIZE_ADDRESS__)
-    return true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-    return true;
-#endif
-#endif
-    return false;
 }
 
 std::unique_ptr<Context> context_with_validation(bool validation) {
@@ -138,7 +128,7 @@ TEST(Repetition, HostMemoryStaysFlatOver200Cycles) {
     // The resident set is reported, not checked: even after malloc_trim it moves by
     // tens of KiB per cycle from run to run (the driver's JIT code pages and thread
     // arenas), while the heap's floor stays within a fraction of a KiB.
-    if (!under_address_sanitizer()) EXPECT_LT(heap_per_cycle, 1.0) << "the host heap grows with every cycle";
+    if (!test::under_address_sanitizer()) EXPECT_LT(heap_per_cycle, 1.0) << "the host heap grows with every cycle";
 }
 
 }  // namespace
