@@ -15,6 +15,7 @@
 #include "render/forward_renderer.h"
 #include "render/reference_renderer.h"
 #include "scene/scene.h"
+#include "light_spec.h"
 
 namespace facet {
 
@@ -104,9 +105,5 @@ private:
     explicit RenderSession(std::unique_ptr<State> state);
     std::unique_ptr<State> state_;
 };
-
-// "directional dir=X,Y,Z [color=R,G,B] [intensity=LUX]", "point pos=X,Y,Z [range=M]
-// [intensity=CD] ...", "spot pos=... dir=... [inner=DEG] [outer=DEG] ...".
-Result<Light> parse_light(const std::string& text);
 
 }  // namespace facet

@@ -14,8 +14,6 @@
 
 namespace facet {
 
-std::string builtin_environment_names() { return "builtin:sky, builtin:white"; }
-
 Result<EnvironmentSource> resolve_environment(const std::string& name, uint32_t builtin_width, bool sanitize) {
     EnvironmentSource source;
     source.name = name;

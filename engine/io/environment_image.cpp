@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "core/hash.h"
+#include "io/exr_header.h"
 
 namespace facet {
 
@@ -19,6 +20,7 @@ Result<EnvironmentImage> load_environment(const std::string& path, const Environ
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) return Error{path + ": no such file"};
     if (std::filesystem::is_directory(path, ec)) return Error{path + ": is a directory, not an image"};
+    if (std::string problem = check_exr_attribute_sizes(path); !problem.empty()) return Error{path + ": " + problem};
     auto in = OIIO::ImageInput::open(path);
     if (!in) {
         std::string reason = OIIO::geterror();
