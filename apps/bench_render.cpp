@@ -6,6 +6,7 @@
 
 #include "gpu/context.h"
 #include "io/atomic_file.h"
+#include "facet_bench_options.h"
 #include "render_job.h"
 
 namespace facet {
@@ -20,33 +21,16 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
-void add_render_bench_options(cli::Parser& parser) {
-    parser.option("--model", "PATH|builtin:NAME", "render: the model (default builtin:spheres)")
-        .option("--env", "PATH|builtin:NAME|none", "render: the environment (default builtin:sky)")
-        .option("--width", "W", "render: image width (default 1280)")
-        .option("--height", "H", "render: image height (default 720)")
-        .option("--frames", "N", "render: frames measured after one warm-up (default 10)")
-        .repeatable("--light", "SPEC", "render: a light, as facet-render's --light (repeatable)");
-}
-
 int run_render_bench(const cli::Parsed& a) {
-    RenderJob job;
-    int frames = 10;
+    RenderBenchOptions options;
     try {
-        job.model = a.get("--model", job.model);
-        job.env = a.get("--env", job.env);
-        if (a.has("--width")) job.frame.width = uint32_t(cli::parse_int(a.get("--width"), "--width", 1, 16384));
-        if (a.has("--height")) job.frame.height = uint32_t(cli::parse_int(a.get("--height"), "--height", 1, 16384));
-        if (a.has("--frames")) frames = cli::parse_int(a.get("--frames"), "--frames", 1, 10000);
-        for (const std::string& spec : a.all("--light")) {
-            auto light = parse_light(spec);
-            if (!light) throw std::invalid_argument(light.error().message);
-            job.extra_lights.push_back(*light);
-        }
+        options = parse_render_bench_options(a);
     } catch (const std::invalid_argument& e) {
         std::fprintf(stderr, "facet-bench: error: %s\n", e.what());
         return 2;
     }
+    const RenderJob& job = options.job;
+    const int frames = options.frames;
     auto created = Context::create({});
     if (!created) {
         std::fprintf(stderr, "facet-bench: error: cannot start Vulkan: %s\n", created.error().message.c_str());

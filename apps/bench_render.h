@@ -4,8 +4,6 @@
 
 namespace facet {
 
-// Adds the render benchmark's options to the parser.
-void add_render_bench_options(cli::Parser& parser);
 // Renders --frames frames after one warm-up (pipelines compiled, IBL baked once) and
 // prints the median GPU time of every pass (timestamp queries), of the frame, and the
 // median wall time per frame. Returns the exit status.

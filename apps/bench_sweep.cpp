@@ -17,6 +17,7 @@
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/json_writer.h"
+#include "facet_bench_options.h"
 #include "render_job.h"
 #include "shader/program_cache.h"
 #include "ibl_measure.h"
@@ -91,26 +92,19 @@ std::string json_of(const std::vector<Row>& rows, const std::string& device, uin
 
 }  // namespace
 
-void add_sweep_options(cli::Parser& parser) {
-    parser.option("--out", "DIR", "sweep: where sweep.csv and sweep.json go (default bench-out)")
-        .option("--env-width", "N", "sweep: environments are downsampled to this width (default 256)")
-        .option("--stages", "LIST", "sweep: irradiance,specular,lut,image (default all)");
-}
-
 int run_sweep(const cli::Parsed& a) {
-    std::vector<std::string> envs(a.positional.begin() + 1, a.positional.end());
-    uint32_t width = 256;
-    int runs = 3;
-    std::string stages = a.get("--stages", "irradiance,specular,lut,image");
-    const std::string out_dir = a.get("--out", "bench-out");
+    SweepOptions options;
     try {
-        if (a.has("--env-width")) width = uint32_t(cli::parse_int(a.get("--env-width"), "--env-width", 8, 4096));
-        if (a.has("--runs")) runs = cli::parse_int(a.get("--runs"), "--runs", 1, 100);
+        options = parse_sweep_options(a);
     } catch (const std::invalid_argument& e) {
         std::fprintf(stderr, "facet-bench: error: %s\n", e.what());
         return 2;
     }
-    if (envs.empty()) envs = {"builtin:sky"};
+    const std::vector<std::string>& envs = options.envs;
+    const uint32_t width = options.env_width;
+    const int runs = options.runs;
+    const std::string& stages = options.stages;
+    const std::string& out_dir = options.out_dir;
     auto created = Context::create({});
     if (!created) {
         std::fprintf(stderr, "facet-bench: error: cannot start Vulkan: %s\n", created.error().message.c_str());

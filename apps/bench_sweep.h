@@ -10,7 +10,6 @@
 
 namespace facet {
 
-void add_sweep_options(cli::Parser& parser);
 int run_sweep(const cli::Parsed& args);
 
 }  // namespace facet

@@ -17,6 +17,7 @@
 #include "bake_files.h"
 #include "cli.h"
 #include "interrupt.h"
+#include "facet_bake_options.h"
 #include "render_options.h"
 #include "shader_cache.h"
 #include "core/hash.h"
@@ -39,119 +40,7 @@ namespace fs = std::filesystem;
 
 constexpr const char* program = "facet-bake";
 
-struct Options {
-    std::string env, out_dir, device, graph_dot;
-    std::string shader_cache;  // empty: no on-disk shader cache
-    uint32_t sky_width = 1024;
-    uint32_t max_env_width = kDefaultMaxEnvironmentWidth;  // wider files are downsampled while read
-    uint32_t cube_size = 0;  // 0: input height / 2
-    float exposure = 1.0f;
-    bool validation = false, sanitize = false, force = false;
-    double target_error = 0;  // 0: no accuracy budget
-    float roughness_min = 0.0f, roughness_max = 1.0f;
-    IrradianceSettings irradiance;
-    SpecularSettings specular;
-    BrdfLutSettings lut;
-};
-
-cli::Parser make_parser() {
-    cli::Parser p(program, "ENV|builtin:NAME --out DIR [options]",
-                  "Bakes image-based lighting for an equirectangular environment (.hdr, .exr, any\n"
-                  "size) or a built-in one (builtin:sky: a sun ~4e4 times the sky; builtin:white:\n"
-                  "radiance 1). Writes into DIR: specular.ktx2 (GGX prefiltered cube, one roughness\n"
-                  "per level), irradiance.ktx2 (E/pi cube), brdf_lut.ktx2 (R = A, G = B, B = E_avg),\n"
-                  "brdf_lut.png, environment.exr/.hdr/.png and bake.json. A bake whose bake.json\n"
-                  "records the same input and settings is skipped (--force redoes it).");
-    p.option("--out", "DIR", "output directory (created if missing)")
-        .option("--irradiance", "METHOD", "convolve (default), riemann, sh9, blur, lowmip")
-        .flag("--sh9-no-window", "sh9: keep the raw coefficients (may ring below 0 on a sun)")
-        .option("--specular", "METHOD", "automatic (default), importance, filtered, convolve, mips")
-        .option("--samples", "N", "GGX samples per texel for importance/filtered levels (default 1024)")
-        .option("--size", "N", "cube face size (default: input height / 2)")
-        .option("--levels", "N", "specular levels, roughness m/(N-1) (default 6)")
-        .option("--irradiance-size", "N", "irradiance face size (default 32)")
-        .option("--lut-size", "N", "BRDF LUT width and height (default 128)")
-        .option("--lut-samples", "N", "GGX samples per LUT texel (default 2048)")
-        .flag("--lut-height-correlated", "LUT with the height-correlated Smith term instead of Schlick-GGX")
-        .option("--width", "N", "width of a built-in environment (default 1024, height N/2)")
-        .option("--max-env-width", "N", "downsample wider environment files to N x N/2 while reading them\n"
-                                         "                          (default " + std::to_string(kDefaultMaxEnvironmentWidth) +
-                                             "; a built-in's --width may not exceed it)")
-        .option("--exposure", "E", "exposure of environment.png (default 1)")
-        .flag("--sanitize", "replace NaN, Inf and negative texels of ENV with 0 instead of failing")
-        .option("--target-error", "E", "accuracy budget: the cheapest methods whose measured relative RMS error\n"
-                                        "                          against the brute-force truth is at most E (e.g. 0.02)")
-        .option("--roughness", "A,B", "budget: the scene's roughness range; specular is judged on it (default 0,1)")
-        .flag("--force", "bake even if DIR holds a bake of the same input and settings")
-        .option("--device", "NAME|INDEX", "Vulkan device (default: FACET_DEVICE, a GPU, else lavapipe)")
-        .flag("--validation", "enable the Khronos validation layer")
-        .option("--graph-dot", "FILE", "also write the compiled render graph as Graphviz dot");
-    add_shader_cache_option(p);
-    return p;
-}
-
-uint32_t positive(const cli::Parsed& a, const char* name, int max) {
-    return static_cast<uint32_t>(cli::parse_int(a.get(name), name, 1, max));
-}
-
-std::optional<Options> parse(int argc, char** argv) {
-    cli::Parser parser = make_parser();
-    cli::Parsed a = parser.parse(argc, argv);
-    if (parser.answered_help_or_version(a, FACET_VERSION)) return std::nullopt;
-    if (a.positional.size() != 1)
-        throw std::invalid_argument("expected exactly one environment (a file or builtin:NAME), got " +
-                                    std::to_string(a.positional.size()));
-    if (!a.has("--out")) throw std::invalid_argument("--out DIR is required");
-    Options o;
-    o.env = a.positional[0];
-    o.out_dir = a.get("--out");
-    if (a.has("--irradiance")) {
-        auto m = parse_irradiance_method(a.get("--irradiance"));
-        if (!m) throw std::invalid_argument("--irradiance: unknown method '" + a.get("--irradiance") + "'");
-        o.irradiance.method = *m;
-    }
-    if (a.has("--specular")) {
-        auto m = parse_specular_method(a.get("--specular"));
-        if (!m) throw std::invalid_argument("--specular: unknown method '" + a.get("--specular") + "'");
-        o.specular.method = *m;
-    }
-    if (a.has("--samples")) o.specular.sample_count = positive(a, "--samples", 1 << 20);
-    if (a.has("--size")) o.cube_size = positive(a, "--size", 8192);
-    if (a.has("--levels")) o.specular.levels = positive(a, "--levels", 16);
-    if (a.has("--irradiance-size")) o.irradiance.size = positive(a, "--irradiance-size", 1024);
-    if (a.has("--lut-size")) o.lut.size = positive(a, "--lut-size", 4096);
-    if (a.has("--lut-samples")) o.lut.sample_count = positive(a, "--lut-samples", 1 << 20);
-    if (a.has("--lut-height-correlated")) o.lut.visibility = LutVisibility::height_correlated;
-    if (a.has("--max-env-width")) o.max_env_width = positive(a, "--max-env-width", int(kMaxEnvironmentSide) / 4);
-    if (a.has("--width")) o.sky_width = positive(a, "--width", 16384);
-    else o.sky_width = std::min(o.sky_width, std::max(2u, o.max_env_width & ~1u));
-    if (o.sky_width % 2) throw std::invalid_argument("--width must be even (the height is width / 2)");
-    if (o.sky_width > o.max_env_width)
-        throw std::invalid_argument("--width " + std::to_string(o.sky_width) + " is above --max-env-width " +
-                                    std::to_string(o.max_env_width) + " (raise both for a wider built-in environment)");
-    if (a.has("--exposure")) {
-        o.exposure = static_cast<float>(cli::parse_double(a.get("--exposure"), "--exposure"));
-        if (o.exposure <= 0) throw std::invalid_argument("--exposure must be positive");
-    }
-    if (a.has("--sh9-no-window")) o.irradiance.sh9_windowing = false;
-    o.sanitize = a.has("--sanitize");
-    if (a.has("--target-error")) {
-        o.target_error = cli::parse_double(a.get("--target-error"), "--target-error");
-        if (!(o.target_error > 0 && o.target_error < 10)) throw std::invalid_argument("--target-error must be in (0, 10)");
-    }
-    if (a.has("--roughness")) {
-        char extra;
-        if (std::sscanf(a.get("--roughness").c_str(), "%f,%f%c", &o.roughness_min, &o.roughness_max, &extra) != 2 ||
-            !(o.roughness_min >= 0 && o.roughness_min <= o.roughness_max && o.roughness_max <= 1))
-            throw std::invalid_argument("--roughness: expected A,B with 0 <= A <= B <= 1, got '" + a.get("--roughness") + "'");
-    }
-    o.force = a.has("--force");
-    o.device = a.get("--device");
-    o.validation = a.has("--validation");
-    o.graph_dot = a.get("--graph-dot");
-    o.shader_cache = shader_cache_dir(a);
-    return o;
-}
+using Options = BakeOptions;
 
 // Everything that decides the outputs, hashed: equal keys mean equal bakes.
 std::string bake_key(const Options& o, const EnvironmentSource& s, uint32_t cube_size, uint32_t levels) {
@@ -341,5 +230,5 @@ int bake(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    return facet::run_interruptible(program, [&] { return parse(argc, argv); }, bake);
+    return facet::run_interruptible(program, [&] { return parse_bake_options(argc, argv); }, bake);
 }

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <regex>
 #include <string>
 #include <vector>
@@ -18,6 +19,7 @@
 #include "bench_render.h"
 #include "bench_sweep.h"
 #include "cli.h"
+#include "facet_bench_options.h"
 #include "io/atomic_file.h"
 
 namespace {
@@ -59,44 +61,24 @@ bool parse_bake_json(const std::string& text, Run& run) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    facet::cli::Parser parser(program, "bake [ENV...] [options] | render [options] | sweep [ENV...] [options]",
-                              "bake: benchmarks facet-bake with its default settings: every ENV (default:\n"
-                              "builtin:sky) is baked --runs times; medians of per-pass GPU time\n"
-                              "(timestamp queries) and wall time are printed. Extra facet-bake options\n"
-                              "can be passed with --bake-args.\n"
-                              "render: renders --frames frames of a model (IBL baked once) and prints the\n"
-                              "median GPU time of every pass and of the frame, and the wall time per frame.\n"
-                              "sweep: every IBL method and parameter and the final image against the\n"
-                              "reference mode, on each ENV (default builtin:sky): time and error against\n"
-                              "brute-force truth, to sweep.csv/json; scripts/chart.py draws the charts.");
-    parser.option("--runs", "N", "bakes per environment (default 5)")
-        .option("--bake", "PATH", "the facet-bake program (default: next to facet-bench)")
-        .option("--bake-args", "ARGS", "more arguments for facet-bake, e.g. \"--specular filtered\"")
-        .option("--csv", "FILE", "also write the medians as CSV");
-    facet::add_render_bench_options(parser);
-    facet::add_sweep_options(parser);
-    facet::cli::Parsed a;
-    int runs = 5;
+    std::optional<facet::BenchOptions> options;
     try {
-        a = parser.parse(argc, argv);
-        if (parser.answered_help_or_version(a, FACET_VERSION)) return 0;
-        if (a.positional.empty() ||
-            (a.positional[0] != "bake" && a.positional[0] != "render" && a.positional[0] != "sweep"))
-            throw std::invalid_argument("the first argument must be the benchmark: bake, render or sweep");
-        if (a.positional[0] == "render" && a.positional.size() > 1)
-            throw std::invalid_argument("render takes no positional arguments (use --model and --env)");
-        if (a.has("--runs")) runs = facet::cli::parse_int(a.get("--runs"), "--runs", 1, 1000);
+        options = facet::parse_bench_options(argc, argv);
+        if (!options) return 0;
     } catch (const std::invalid_argument& e) {
         std::fprintf(stderr, "%s: error: %s\n", program, e.what());
         return 2;
     }
+    const facet::cli::Parsed& a = options->args;
+    const int runs = options->runs;
     if (a.positional[0] == "render") return facet::run_render_bench(a);
     if (a.positional[0] == "sweep") return facet::run_sweep(a);
     std::vector<std::string> envs(a.positional.begin() + 1, a.positional.end());
     if (envs.empty()) envs = {"builtin:sky"};
     const std::string bake =
         a.has("--bake") ? a.get("--bake") : (fs::canonical("/proc/self/exe").parent_path() / "facet-bake").string();
-    if (!fs::exists(bake)) {
+    std::error_code missing;  // the throwing overload would abort on a name too long
+    if (!fs::exists(bake, missing)) {
         std::fprintf(stderr, "%s: error: %s: no such program (use --bake PATH)\n", program, bake.c_str());
         return 1;
     }

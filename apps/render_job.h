@@ -16,6 +16,7 @@
 #include "render/reference_renderer.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene.h"
+#include "light_spec.h"
 
 namespace facet {
 
@@ -108,9 +109,5 @@ private:
     explicit RenderSession(std::unique_ptr<State> state);
     std::unique_ptr<State> state_;
 };
-
-// "directional dir=X,Y,Z [color=R,G,B] [intensity=LUX]", "point pos=X,Y,Z [range=M]
-// [intensity=CD] ...", "spot pos=... dir=... [inner=DEG] [outer=DEG] ...".
-Result<Light> parse_light(const std::string& text);
 
 }  // namespace facet

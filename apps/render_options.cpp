@@ -73,8 +73,9 @@ void parse_render_options(const cli::Parsed& a, RenderJob& j) {
     if (a.has("--target")) {
         glm::vec3 t;
         char extra;
-        if (std::sscanf(a.get("--target").c_str(), "%f,%f,%f%c", &t.x, &t.y, &t.z, &extra) != 3)
-            throw std::invalid_argument("--target: expected X,Y,Z, got '" + a.get("--target") + "'");
+        if (std::sscanf(a.get("--target").c_str(), "%f,%f,%f%c", &t.x, &t.y, &t.z, &extra) != 3 ||
+            !std::isfinite(t.x) || !std::isfinite(t.y) || !std::isfinite(t.z))
+            throw std::invalid_argument("--target: expected X,Y,Z (finite), got '" + a.get("--target") + "'");
         j.target = t;
     }
     if (a.has("--fov")) j.fov_deg = number_option(a, "--fov", 1.0f, 170.0f);
@@ -131,15 +132,6 @@ void parse_render_options(const cli::Parsed& a, RenderJob& j) {
     if (a.has("--ibl-samples"))
         j.ibl.specular.sample_count = uint32_t(cli::parse_int(a.get("--ibl-samples"), "--ibl-samples", 1, 1 << 20));
     j.sanitize = a.has("--sanitize");
-}
-
-std::unique_ptr<Context> start_vulkan(const std::string& device, bool validation) {
-    ContextOptions options;
-    options.device = device;
-    if (validation) options.validation = true;
-    auto created = Context::create(options);
-    if (!created) throw std::runtime_error("cannot start Vulkan: " + created.error().message);
-    return std::move(created).value();
 }
 
 }  // namespace facet

@@ -3,6 +3,7 @@ set -euo pipefail
 
 FACET_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 FACET_BUILD_DIR="${FACET_BUILD_DIR:-$FACET_ROOT/build/release}"
+FACET_FUZZ_BUILD_DIR="${FACET_FUZZ_BUILD_DIR:-$FACET_ROOT/build/fuzz}"
 FACET_JOBS="${FACET_JOBS:-$(nproc)}"
 
 # Everything Facet builds and runs with (design.md); the tests add their own few.
@@ -15,7 +16,9 @@ FACET_PACKAGES=(
 )
 # python3-matplotlib: facet-bench sweep's charts (scripts/chart.py), drawn in a test.
 # xvfb: the viewer's tests start their own X server.
-FACET_TEST_PACKAGES=(libgtest-dev libgmock-dev libbenchmark-dev xvfb python3-matplotlib)
+# clang-14, libclang-rt-14-dev: the fuzz targets (libFuzzer, ASan and UBSan runtimes are in
+# libclang-rt-14-dev, which clang-14 only recommends).
+FACET_TEST_PACKAGES=(libgtest-dev libgmock-dev libbenchmark-dev xvfb python3-matplotlib clang-14 libclang-rt-14-dev)
 
 # Installs the packages that are missing; apt-get update runs only when needed.
 install_packages() {
@@ -38,4 +41,12 @@ install_packages() {
 build_facet() {
   cmake -S "$FACET_ROOT" -B "$FACET_BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release "$@"
   cmake --build "$FACET_BUILD_DIR" -j "$FACET_JOBS"
+}
+
+# The fuzz targets (tests/fuzz): the parsers alone, built by clang with libFuzzer, ASan
+# and UBSan.
+build_fuzz() {
+  CC=clang-14 CXX=clang++-14 cmake -S "$FACET_ROOT" -B "$FACET_FUZZ_BUILD_DIR" -G Ninja \
+    -DFACET_BUILD_FUZZ=ON -DFACET_BUILD_APPS=OFF -DFACET_BUILD_TESTS=OFF
+  cmake --build "$FACET_FUZZ_BUILD_DIR" -j "$FACET_JOBS"
 }

@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
 # The tests: install packages, build, run every ctest suite on lavapipe with the
-# Khronos validation layer (any validation message fails a test).
+# Khronos validation layer (any validation message fails a test), then the fuzz targets.
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 
 install_packages "${FACET_PACKAGES[@]}" "${FACET_TEST_PACKAGES[@]}"
 build_facet -DFACET_BUILD_TESTS=ON
-cd "$FACET_BUILD_DIR"
-ctest --output-on-failure --timeout 600 -j "$FACET_JOBS" "$@"
+(cd "$FACET_BUILD_DIR" && ctest --output-on-failure --timeout 600 -j "$FACET_JOBS" "$@")
+# Then every fuzz target for a short bounded run (FACET_FUZZ_SECONDS, default 20 s each)
+# and a replay of its regression inputs; scripts/fuzz.sh runs them longer.
+build_fuzz
+cd "$FACET_FUZZ_BUILD_DIR"
+ctest --output-on-failure --timeout 600 -j "$FACET_JOBS" -L fuzz

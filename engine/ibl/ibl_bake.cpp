@@ -15,8 +15,6 @@
 
 namespace facet {
 
-std::string builtin_environment_names() { return "builtin:sky, builtin:white"; }
-
 Result<EnvironmentSource> resolve_environment(const std::string& name, uint32_t builtin_width,
                                               const EnvironmentLoadOptions& file_options) {
     EnvironmentSource source;

@@ -141,24 +141,6 @@ Result<ImageHandle> add_cube_sampling(RenderGraph& graph, ProgramCache& programs
 
 }  // namespace
 
-const char* irradiance_method_name(IrradianceMethod method) {
-    switch (method) {
-        case IrradianceMethod::convolve: return "convolve";
-        case IrradianceMethod::riemann: return "riemann";
-        case IrradianceMethod::sh9: return "sh9";
-        case IrradianceMethod::blur: return "blur";
-        case IrradianceMethod::lowmip: return "lowmip";
-    }
-    return "?";
-}
-
-std::optional<IrradianceMethod> parse_irradiance_method(const std::string& name) {
-    for (auto m : {IrradianceMethod::convolve, IrradianceMethod::riemann, IrradianceMethod::sh9, IrradianceMethod::blur,
-                   IrradianceMethod::lowmip})
-        if (name == irradiance_method_name(m)) return m;
-    return std::nullopt;
-}
-
 uint32_t level_at_most(uint32_t size, uint32_t mip_levels, uint32_t max_face) {
     uint32_t level = 0;
     while (level + 1 < mip_levels && (size >> level) > max_face) ++level;

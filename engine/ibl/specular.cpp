@@ -17,24 +17,6 @@ constexpr VkImageViewType array_view = cube_array_view;
 
 }  // namespace
 
-const char* specular_method_name(SpecularMethod method) {
-    switch (method) {
-        case SpecularMethod::automatic: return "automatic";
-        case SpecularMethod::importance: return "importance";
-        case SpecularMethod::filtered: return "filtered";
-        case SpecularMethod::convolve: return "convolve";
-        case SpecularMethod::mips: return "mips";
-    }
-    return "?";
-}
-
-std::optional<SpecularMethod> parse_specular_method(const std::string& name) {
-    for (auto m : {SpecularMethod::automatic, SpecularMethod::importance, SpecularMethod::filtered,
-                   SpecularMethod::convolve, SpecularMethod::mips})
-        if (name == specular_method_name(m)) return m;
-    return std::nullopt;
-}
-
 std::vector<float> specular_level_roughness(uint32_t levels) {
     std::vector<float> r(levels, 0.0f);
     for (uint32_t m = 1; m < levels; ++m) r[m] = float(m) / float(levels - 1);

@@ -11,6 +11,7 @@
 
 #include "core/hash.h"
 #include "io/box_downsample.h"
+#include "io/exr_header.h"
 
 namespace facet {
 
@@ -88,6 +89,7 @@ Result<EnvironmentImage> load_environment(const std::string& path, const Environ
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) return Error{path + ": no such file"};
     if (std::filesystem::is_directory(path, ec)) return Error{path + ": is a directory, not an image"};
+    if (std::string problem = check_exr_attribute_sizes(path); !problem.empty()) return Error{path + ": " + problem};
     // open() reads the header only: the size is known before any texel is.
     auto in = OIIO::ImageInput::open(path);
     if (!in) {

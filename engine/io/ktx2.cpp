@@ -6,6 +6,7 @@
 #include <cstring>
 #include <fstream>
 #include <numeric>
+#include <set>
 #include <system_error>
 
 #include "io/atomic_file.h"
@@ -193,6 +194,7 @@ std::string check_dfd(const Bytes& in, uint64_t offset, uint64_t length, const F
 
 std::string read_kvd(const Bytes& in, uint64_t offset, uint64_t length, Ktx2Image& image) {
     uint64_t end = offset + length, at = offset;
+    std::set<std::string> keys;  // a key given twice has no one meaning (and would not write back)
     while (at < end) {
         if (end - at < 4) return "key/value data ends inside an entry length";
         uint64_t entry = in.u32(at);
@@ -202,6 +204,7 @@ std::string read_kvd(const Bytes& in, uint64_t offset, uint64_t length, Ktx2Imag
         const char* nul = static_cast<const char*>(std::memchr(first, 0, entry));
         if (!nul || nul == first) return "key/value entry has an empty or unterminated key";
         std::string key(first, nul);
+        if (!keys.insert(key).second) return "key/value key '" + key + "' appears twice";
         std::string value(nul + 1, first + entry);
         if (!value.empty() && value.back() == '\0') value.pop_back();
         image.key_values.emplace_back(std::move(key), std::move(value));

@@ -5,17 +5,6 @@
 #include "shader/program_cache.h"
 
 namespace facet {
-namespace {
-constexpr const char* names[] = {"none", "reinhard", "exposure", "aces", "neutral"};
-}
-
-const char* tonemap_name(Tonemap tonemap) { return names[uint32_t(tonemap)]; }
-
-std::optional<Tonemap> parse_tonemap(const std::string& name) {
-    for (uint32_t i = 0; i < 5; ++i)
-        if (name == names[i]) return Tonemap(i);
-    return std::nullopt;
-}
 
 Result<ImageHandle> add_tonemap_pass(RenderGraph& graph, ProgramCache& programs, const Sampler& nearest,
                                      ImageHandle hdr, ImageHandle ldr, const DisplaySettings& display) {

@@ -1,5 +1,8 @@
 #include "scene/gltf_materials.h"
 
+#include <algorithm>
+#include <climits>
+#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -75,6 +78,12 @@ Material convert_material(const tinygltf::Model& model, size_t index) {
     }
     out.alpha_cutoff = float(m.alphaCutoff);
     out.double_sided = m.doubleSided;
+    // Finite JSON numbers can still overflow as floats (1e39), or in the emissive product.
+    const float factors[] = {out.base_color.r, out.base_color.g, out.base_color.b, out.base_color.a, out.metallic,
+                             out.roughness, out.emissive.r, out.emissive.g, out.emissive.b, out.normal_scale,
+                             out.occlusion_strength, out.alpha_cutoff};
+    if (!std::all_of(std::begin(factors), std::end(factors), [](float v) { return std::isfinite(v); }))
+        fail(where + ": a factor is not finite (too large for floats)");
     out.base_color_texture =
         texture_ref(model, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, where, "baseColorTexture");
     out.metallic_roughness_texture = texture_ref(model, pbr.metallicRoughnessTexture.index,

@@ -155,10 +155,17 @@ void load_primitive(const tinygltf::Model& model, const tinygltf::Primitive& pri
             // Exporters round normals; shading and tangent generation expect unit length.
             if (length > 1e-20f && std::isfinite(length)) v.normal = n / length;
         }
-        if (uvs) v.uv = {component(*uvs, i, 0), component(*uvs, i, 1)};
-        if (tangents)
+        if (uvs) {
+            v.uv = {component(*uvs, i, 0), component(*uvs, i, 1)};
+            if (!std::isfinite(v.uv.x) || !std::isfinite(v.uv.y))
+                fail(where + ": vertex " + std::to_string(i) + " TEXCOORD_0 is not finite");
+        }
+        if (tangents) {
             v.tangent = {component(*tangents, i, 0), component(*tangents, i, 1), component(*tangents, i, 2),
                          component(*tangents, i, 3) < 0.0f ? -1.0f : 1.0f};
+            if (!std::isfinite(v.tangent.x) || !std::isfinite(v.tangent.y) || !std::isfinite(v.tangent.z))
+                fail(where + ": vertex " + std::to_string(i) + " TANGENT is not finite");
+        }
     }
 
     std::vector<uint32_t> indices = triangle_indices(model, primitive, where, count);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <optional>
 #include <string>
 #include <utility>
@@ -111,6 +112,8 @@ Camera convert_camera(const tinygltf::Model& model, const tinygltf::Node& node, 
     } else {
         fail(where + ": unknown camera type '" + c.type + "'");
     }
+    if (!std::isfinite(out.yfov) || !std::isfinite(out.znear) || !std::isfinite(out.zfar) || !std::isfinite(out.ymag))
+        fail(where + ": camera values are not finite (too large for floats)");
     out.position = translation_of(world);
     out.target = out.position + world_direction(world, {0, 0, -1}, where);
     out.up = world_direction(world, {0, 1, 0}, where);
@@ -123,9 +126,14 @@ std::optional<Light> node_light(const tinygltf::Model& model, const tinygltf::No
     if (ext == node.extensions.end()) return std::nullopt;
     const tinygltf::Value& index_value = ext->second.IsObject() ? ext->second.Get("light") : tinygltf::Value();
     if (!index_value.IsNumber()) fail(where + ": KHR_lights_punctual without a light index");
-    int index = index_value.GetNumberAsInt();
-    if (!in_range(index, model.lights.size())) fail(where + ": light " + std::to_string(index) + " out of range");
-    const tinygltf::Light& l = model.lights[size_t(index)];
+    // GetNumberAsInt would convert a real such as 1e30 without a range check (undefined).
+    const double number = index_value.GetNumberAsDouble();
+    if (!(number >= 0 && number < double(model.lights.size())) || number != std::floor(number)) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%g", number);
+        fail(where + ": light " + text + " out of range (" + std::to_string(model.lights.size()) + " lights)");
+    }
+    const tinygltf::Light& l = model.lights[size_t(number)];
     Light out;
     if (l.type == "directional") {
         out.type = LightType::directional;
@@ -145,6 +153,10 @@ std::optional<Light> node_light(const tinygltf::Model& model, const tinygltf::No
     out.range = float(l.range);
     out.inner_cone = float(l.spot.innerConeAngle);
     out.outer_cone = float(l.spot.outerConeAngle);
+    const float values[] = {out.color.x, out.color.y, out.color.z, out.intensity, out.range, out.inner_cone,
+                            out.outer_cone};
+    if (!std::all_of(std::begin(values), std::end(values), [](float v) { return std::isfinite(v); }))
+        fail(where + ": light values are not finite (too large for floats)");
     out.position = translation_of(world);
     out.direction = world_direction(world, {0, 0, -1}, where);
     return out;
@@ -159,12 +171,18 @@ void place_nodes(const tinygltf::Model& model, Scene& scene) {
         int chosen = model.defaultScene != -1 ? model.defaultScene : 0;
         if (!in_range(chosen, model.scenes.size())) fail("scene " + std::to_string(chosen) + " out of range");
         roots = model.scenes[size_t(chosen)].nodes;
+        std::vector<bool> listed(model.nodes.size(), false);
         for (int root : roots) {
             if (!in_range(root, model.nodes.size()))
                 fail("scene " + std::to_string(chosen) + ": node " + std::to_string(root) + " out of range");
             if (parent[size_t(root)] != -1)
                 fail("scene " + std::to_string(chosen) + ": " +
                      label("node", size_t(root), model.nodes[size_t(root)].name) + " is not a root node");
+            // glTF requires unique roots; each repeat would place the whole subtree again.
+            if (listed[size_t(root)])
+                fail("scene " + std::to_string(chosen) + ": " +
+                     label("node", size_t(root), model.nodes[size_t(root)].name) + " is listed twice");
+            listed[size_t(root)] = true;
         }
     } else {
         for (size_t i = 0; i < model.nodes.size(); ++i)
@@ -180,6 +198,11 @@ void place_nodes(const tinygltf::Model& model, Scene& scene) {
         const tinygltf::Node& node = model.nodes[size_t(index)];
         std::string where = label("node", size_t(index), node.name);
         glm::mat4 world = parent_world * local_matrix(node, where);
+        // Finite doubles can still overflow as floats (a scale of 1e39) or in the product.
+        for (int c = 0; c < 4; ++c)
+            if (!std::isfinite(world[c].x) || !std::isfinite(world[c].y) || !std::isfinite(world[c].z) ||
+                !std::isfinite(world[c].w))
+                fail(where + ": world transform is not finite (a scale or translation too large for floats)");
         if (node.mesh != -1) {
             if (!in_range(node.mesh, scene.meshes.size()))
                 fail(where + ": mesh " + std::to_string(node.mesh) + " out of range");

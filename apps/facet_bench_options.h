@@ -1,0 +1,41 @@
+#pragma once
+// facet-bench's command line (the benchmark, then the options of bake, render and
+// sweep), apart from the programs so that it can be tested and fuzzed without a GPU.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli.h"
+#include "render_job.h"
+
+namespace facet {
+
+struct BenchOptions {
+    std::string benchmark;  // bake, render or sweep
+    int runs = 5;           // bake: bakes per environment
+    cli::Parsed args;       // every option, for the benchmark's own parse below
+};
+
+// Nothing when --help or --version was answered; throws std::invalid_argument naming
+// the option for bad usage.
+std::optional<BenchOptions> parse_bench_options(int argc, char** argv);
+
+struct RenderBenchOptions {
+    RenderJob job;
+    int frames = 10;
+};
+// Throws std::invalid_argument naming the option.
+RenderBenchOptions parse_render_bench_options(const cli::Parsed& args);
+
+struct SweepOptions {
+    std::vector<std::string> envs;  // default builtin:sky
+    uint32_t env_width = 256;
+    int runs = 3;
+    std::string stages = "irradiance,specular,lut,image";
+    std::string out_dir = "bench-out";
+};
+// Throws std::invalid_argument naming the option.
+SweepOptions parse_sweep_options(const cli::Parsed& args);
+
+}  // namespace facet

@@ -1,0 +1,18 @@
+// Tone mapping operators by name, apart from the pass so that option parsing (and its
+// fuzz target) needs no GPU code.
+#include "render/tonemap.h"
+
+namespace facet {
+namespace {
+constexpr const char* names[] = {"none", "reinhard", "exposure", "aces", "neutral"};
+}
+
+const char* tonemap_name(Tonemap tonemap) { return names[uint32_t(tonemap)]; }
+
+std::optional<Tonemap> parse_tonemap(const std::string& name) {
+    for (uint32_t i = 0; i < 5; ++i)
+        if (name == names[i]) return Tonemap(i);
+    return std::nullopt;
+}
+
+}  // namespace facet
