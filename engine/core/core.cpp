@@ -1,6 +1,7 @@
 #include "core/hash.h"
 #include "core/log.h"
 #include "core/result.h"
+#include "core/units.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -53,6 +54,14 @@ const char* vk_result_name(VkResult result) {
         default:
             return "VkResult(unknown)";
     }
+}
+
+std::string format_bytes(uint64_t bytes) {
+    char text[32];
+    if (bytes >= (uint64_t(1) << 30)) std::snprintf(text, sizeof text, "%.1f GiB", double(bytes) / double(1u << 30));
+    else if (bytes >= (uint64_t(1) << 20)) std::snprintf(text, sizeof text, "%.0f MiB", double(bytes) / double(1u << 20));
+    else std::snprintf(text, sizeof text, "%.0f KiB", double(bytes) / 1024.0);
+    return text;
 }
 
 void vk_check(VkResult result, const char* what) {

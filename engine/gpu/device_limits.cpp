@@ -29,14 +29,6 @@ uint32_t texel_bytes(VkFormat format) {
 
 }  // namespace
 
-std::string format_bytes(uint64_t bytes) {
-    char text[32];
-    if (bytes >= (uint64_t(1) << 30)) std::snprintf(text, sizeof text, "%.1f GiB", double(bytes) / double(1u << 30));
-    else if (bytes >= (uint64_t(1) << 20)) std::snprintf(text, sizeof text, "%.0f MiB", double(bytes) / double(1u << 20));
-    else std::snprintf(text, sizeof text, "%.0f KiB", double(bytes) / 1024.0);
-    return text;
-}
-
 DeviceLimits device_limits(const Context& context) {
     DeviceLimits l;
     const VkPhysicalDeviceLimits& p = context.properties().limits;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/result.h"
+#include "core/units.h"
 #include "gpu/resources.h"
 
 namespace facet {
@@ -44,6 +45,5 @@ Status check_images_fit(const DeviceLimits& limits, const std::vector<NamedImage
 // The transient images and buffers `compiled` allocates when it runs.
 Status check_graph_fits(const Context& context, const CompiledGraph& compiled);
 
-std::string format_bytes(uint64_t bytes);  // "1.5 GiB", "12 MiB", "640 KiB"
 
 }  // namespace facet

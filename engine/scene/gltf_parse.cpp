@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "gpu/device_limits.h"
+#include "core/units.h"
 #include "scene/gltf_errors.h"
 
 namespace facet::gltf_detail {
