@@ -17,24 +17,12 @@
 namespace facet {
 namespace {
 
-std::unique_ptr<Context> validated_context() {
-    ContextOptions options;
-    options.validation = true;
-    options.sync_validation = true;
-    auto created = Context::create(options);
-    if (!created) {
-        ADD_FAILURE() << created.error().message;
-        return nullptr;
-    }
-    return std::move(created).value();
-}
-
 // The calls of each kind one tiny bake + render makes (counted once per process).
 uint64_t calls_per_session(FaultSite site) {
     static const auto counts = [] {
         std::array<uint64_t, 3> before{}, after{};
         for (int s = 0; s < 3; ++s) before[s] = fault_site_calls(FaultSite(s));
-        auto context = validated_context();
+        auto context = test::own_context();
         EXPECT_TRUE(test::run_tiny_session(*context).error.empty());
         for (int s = 0; s < 3; ++s) after[s] = fault_site_calls(FaultSite(s));
         std::array<uint64_t, 3> n{};
@@ -47,7 +35,7 @@ uint64_t calls_per_session(FaultSite site) {
 TEST(Teardown, ObjectTrackingReportsAnObjectLeftBehind) {
     // The check the other tests rely on: a sampler never destroyed is reported when
     // the device is destroyed, and counted although its context is gone.
-    auto context = validated_context();
+    auto context = test::own_context();
     ASSERT_TRUE(context);
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     VkSampler leaked = VK_NULL_HANDLE;
@@ -60,7 +48,7 @@ TEST(Teardown, ObjectTrackingReportsAnObjectLeftBehind) {
 
 TEST(Teardown, BakeAndRenderLeaveNoVulkanObject) {
     const uint32_t before = Context::process_validation_message_count();
-    auto context = validated_context();
+    auto context = test::own_context();
     ASSERT_TRUE(context);
     const test::TinyResult result = test::run_tiny_session(*context);
     ASSERT_EQ(result.error, "");
@@ -89,7 +77,7 @@ TEST_P(InjectedFault, EveryCallFailsCleanly) {
     for (uint64_t skip = 0; skip < calls; ++skip) {
         SCOPED_TRACE("failing call " + std::to_string(skip + 1) + " of " + std::to_string(calls));
         const uint32_t before = Context::process_validation_message_count();
-        auto context = validated_context();
+        auto context = test::own_context();
         ASSERT_TRUE(context);
         inject_fault(c.site, static_cast<uint32_t>(skip));
         const test::TinyResult result = test::run_tiny_session(*context);
@@ -128,12 +116,12 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(Teardown, ANewContextWorksAfterADeviceLoss) {
     const uint32_t before = Context::process_validation_message_count();
     {
-        auto lost = validated_context();
+        auto lost = test::own_context();
         inject_fault(FaultSite::submit);
         EXPECT_EQ(test::run_tiny_session(*lost).vk_result, VK_ERROR_DEVICE_LOST);
         clear_injected_faults();
     }
-    auto fresh = validated_context();
+    auto fresh = test::own_context();
     EXPECT_EQ(test::run_tiny_session(*fresh).error, "");
     fresh.reset();
     EXPECT_EQ(Context::process_validation_message_count(), before);

@@ -51,24 +51,12 @@ double floor_growth_per_cycle(const std::vector<double>& samples) {
     return (last - first) / double(samples.size() - window);
 }
 
-std::unique_ptr<Context> context_with_validation(bool validation) {
-    ContextOptions options;
-    options.validation = validation;
-    options.sync_validation = validation;
-    auto created = Context::create(options);
-    if (!created) {
-        ADD_FAILURE() << created.error().message;
-        return nullptr;
-    }
-    return std::move(created).value();
-}
-
 // Under the validation layer (object tracking and synchronization validation): every
 // cycle renders the same image, frees all its device memory, and the context's
 // teardown finds no object left.
 TEST(Repetition, ValidatedCyclesReturnEveryObjectAndAllDeviceMemory) {
     const uint32_t messages_before = Context::process_validation_message_count();
-    auto context = context_with_validation(true);
+    auto context = test::own_context(true);
     ASSERT_TRUE(context);
     const AllocatorStats at_start = context->allocator().stats();
     double first_mean = 0;
@@ -90,7 +78,7 @@ TEST(Repetition, ValidatedCyclesReturnEveryObjectAndAllDeviceMemory) {
 // validation about 120 KiB more (its access history), until the device is destroyed;
 // measured with Khronos' layer 1.3.239 (bookworm). Facet's own growth would drown in it.
 TEST(Repetition, HostMemoryStaysFlatOver200Cycles) {
-    auto context = context_with_validation(false);
+    auto context = test::own_context(false);
     ASSERT_TRUE(context);
     const int n = host_memory_cycles();
     // The first cycles fill what is kept on purpose (the driver's shader caches,

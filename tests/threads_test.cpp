@@ -18,18 +18,6 @@
 namespace facet {
 namespace {
 
-std::unique_ptr<Context> validated_context() {
-    ContextOptions options;
-    options.validation = true;
-    options.sync_validation = true;
-    auto created = Context::create(options);
-    if (!created) {
-        ADD_FAILURE() << created.error().message;
-        return nullptr;
-    }
-    return std::move(created).value();
-}
-
 // Two jobs that differ, so that crossed wires between threads would show in the image.
 RenderJob job_for(int which) {
     RenderJob job = test::tiny_job();
@@ -40,7 +28,7 @@ RenderJob job_for(int which) {
 double alone(int which) {
     static double means[2] = {-1, -1};
     if (means[which % 2] < 0) {
-        auto context = validated_context();
+        auto context = test::own_context();
         const test::TinyResult r = test::run_tiny_session(*context, job_for(which));
         EXPECT_EQ(r.error, "");
         means[which % 2] = r.mean_radiance;
@@ -51,8 +39,8 @@ double alone(int which) {
 TEST(Threads, TwoContextsInOneProcess) {
     const double expected[2] = {alone(0), alone(1)};
     const uint32_t before = Context::process_validation_message_count();
-    auto a = validated_context();
-    auto b = validated_context();
+    auto a = test::own_context();
+    auto b = test::own_context();
     ASSERT_TRUE(a && b);
     // Interleaved on one thread...
     for (int i = 0; i < 2; ++i) {
@@ -77,7 +65,7 @@ TEST(Threads, TwoContextsInOneProcess) {
 TEST(Threads, OneContextFromTwoThreads) {
     const double expected[2] = {alone(0), alone(1)};
     const uint32_t before = Context::process_validation_message_count();
-    auto context = validated_context();
+    auto context = test::own_context();
     ASSERT_TRUE(context);
     constexpr int threads = 2, sessions_per_thread = 4;
     std::vector<std::vector<test::TinyResult>> results(threads);

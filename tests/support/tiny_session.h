@@ -1,6 +1,8 @@
 #pragma once
 // The smallest complete piece of work Facet does: bake a built-in sky and render the
 // built-in spheres with it, at sizes lavapipe gets through in a fraction of a second.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <memory>
 #include <string>
@@ -9,6 +11,20 @@
 #include "render_job.h"
 
 namespace facet::test {
+
+// A context of the test's own (not the shared one), so that its teardown, where the
+// validation layer reports objects left behind, happens inside the test.
+inline std::unique_ptr<Context> own_context(bool validation = true) {
+    ContextOptions options;
+    options.validation = validation;
+    options.sync_validation = validation;
+    auto created = Context::create(options);
+    if (!created) {
+        ADD_FAILURE() << created.error().message;
+        return nullptr;
+    }
+    return std::move(created).value();
+}
 
 inline RenderJob tiny_job() {
     RenderJob job;
