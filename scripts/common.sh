@@ -17,8 +17,9 @@ FACET_PACKAGES=(
 # python3-matplotlib: facet-bench sweep's charts (scripts/chart.py), drawn in a test.
 # xvfb: the viewer's tests start their own X server.
 # clang-14, libclang-rt-14-dev: the fuzz targets (libFuzzer, ASan and UBSan runtimes are in
-# libclang-rt-14-dev, which clang-14 only recommends).
-FACET_TEST_PACKAGES=(libgtest-dev libgmock-dev libbenchmark-dev xvfb python3-matplotlib clang-14 libclang-rt-14-dev)
+# libclang-rt-14-dev, which clang-14 only recommends). llvm-14: llvm-symbolizer, which
+# names the functions in sanitizer reports (the fuzz suppressions match by function).
+FACET_TEST_PACKAGES=(libgtest-dev libgmock-dev libbenchmark-dev xvfb python3-matplotlib clang-14 libclang-rt-14-dev llvm-14)
 
 # Installs the packages that are missing; apt-get update runs only when needed.
 install_packages() {

@@ -14,6 +14,10 @@ if(DICT)
   list(APPEND options -dict=${DICT})
 endif()
 # Leaks inside Debian's libraries that Facet cannot fix; full stacks so that they match.
+# Function names in reports need the symbolizer, which clang does not bring on its own.
+if(NOT DEFINED ENV{ASAN_SYMBOLIZER_PATH} AND EXISTS /usr/lib/llvm-14/bin/llvm-symbolizer)
+  set(ENV{ASAN_SYMBOLIZER_PATH} /usr/lib/llvm-14/bin/llvm-symbolizer)
+endif()
 if(EXISTS ${SOURCE}/${NAME}.supp)
   set(ENV{ASAN_OPTIONS} "fast_unwind_on_malloc=0:$ENV{ASAN_OPTIONS}")
   set(ENV{LSAN_OPTIONS} "suppressions=${SOURCE}/${NAME}.supp:$ENV{LSAN_OPTIONS}")
