@@ -8,8 +8,9 @@ namespace facet {
 namespace {
 
 constexpr uint32_t kMagic = 20000630;        // 0x76, 0x2f, 0x31, 0x01
-constexpr uint32_t kLongNamesFlag = 0x400;   // names up to 255 bytes instead of 31
 constexpr uint32_t kMultipartFlag = 0x1000;  // several headers, the list ending with an empty one
+// OpenEXR reads names up to this long whatever the version's long-names flag says.
+constexpr size_t kMaxName = 255;
 
 bool read_u32(std::istream& in, uint32_t& value) {
     unsigned char bytes[4];
@@ -29,6 +30,13 @@ bool read_name(std::istream& in, size_t max, std::string& name) {
     return false;
 }
 
+// For the message: the name is the file's bytes, control characters included.
+std::string printable(std::string text) {
+    for (char& c : text)
+        if (c < 0x20 || c == 0x7f) c = '?';
+    return text;
+}
+
 }  // namespace
 
 std::string check_exr_attribute_sizes(const std::string& path) {
@@ -38,18 +46,17 @@ std::string check_exr_attribute_sizes(const std::string& path) {
     in.seekg(0);
     uint32_t magic = 0, version = 0;
     if (!read_u32(in, magic) || magic != kMagic || !read_u32(in, version)) return {};
-    const size_t max_name = (version & kLongNamesFlag) ? 255 : 31;
     std::string name, type;
     // Anything malformed other than a size is left to OpenEXR to report.
     while (true) {
         while (true) {
-            if (!read_name(in, max_name, name)) return {};
+            if (!read_name(in, kMaxName, name)) return {};
             if (name.empty()) break;  // the end of this header
             uint32_t size = 0;
-            if (!read_name(in, max_name, type) || !read_u32(in, size)) return {};
+            if (!read_name(in, kMaxName, type) || !read_u32(in, size)) return {};
             const uint64_t at = uint64_t(std::streamoff(in.tellg()));
             if (uint64_t(size) > file_size - at)
-                return "the EXR header attribute '" + name + "' declares " + std::to_string(int32_t(size)) +
+                return "the EXR header attribute '" + printable(name) + "' declares " + std::to_string(int32_t(size)) +
                        " bytes, more than the file holds (" + std::to_string(file_size) + " bytes)";
             in.seekg(std::streamoff(size), std::ios::cur);
         }
