@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "core/result.h"
-#include "ibl/ibl_bake.h"
-#include "shader/compiler.h"
+#include <facet/core/result.h>
+#include <facet/ibl/ibl_bake.h>
+#include <facet/shader/compiler.h>
 
 namespace facet {
 

@@ -5,13 +5,13 @@
 #include <cstring>
 #include <filesystem>
 
-#include "gpu/transfer.h"
+#include <facet/gpu/transfer.h>
 #include "interrupt.h"
-#include "io/atomic_file.h"
-#include "io/image_io.h"
-#include "io/json_writer.h"
-#include "io/ktx2.h"
-#include "io/output_set.h"
+#include <facet/io/atomic_file.h>
+#include <facet/io/image_io.h>
+#include <facet/io/json_writer.h>
+#include <facet/io/ktx2.h>
+#include <facet/io/output_set.h>
 
 namespace facet {
 

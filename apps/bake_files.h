@@ -5,11 +5,11 @@
 #include <string>
 #include <vector>
 
-#include "core/result.h"
-#include "graph/graph_run.h"
-#include "ibl/brdf_lut.h"
-#include "ibl/irradiance.h"
-#include "ibl/specular.h"
+#include <facet/core/result.h>
+#include <facet/graph/graph_run.h>
+#include <facet/ibl/brdf_lut.h>
+#include <facet/ibl/irradiance.h>
+#include <facet/ibl/specular.h>
 
 namespace facet {
 

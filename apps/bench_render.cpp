@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <map>
 
-#include "gpu/context.h"
-#include "io/atomic_file.h"
+#include <facet/gpu/context.h>
+#include <facet/io/atomic_file.h>
 #include "facet_bench_options.h"
 #include "render_job.h"
 

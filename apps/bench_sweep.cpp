@@ -9,19 +9,19 @@
 #include <functional>
 #include <sstream>
 
-#include "gpu/context.h"
-#include "gpu/transfer.h"
-#include "graph/compiled_graph.h"
-#include "graph/graph_run.h"
-#include "ibl/ibl_bake.h"
-#include "io/atomic_file.h"
-#include "io/image_io.h"
-#include "io/json_writer.h"
+#include <facet/gpu/context.h>
+#include <facet/gpu/transfer.h>
+#include <facet/graph/compiled_graph.h>
+#include <facet/graph/graph_run.h>
+#include <facet/ibl/ibl_bake.h>
+#include <facet/io/atomic_file.h>
+#include <facet/io/image_io.h>
+#include <facet/io/json_writer.h>
 #include "facet_bench_options.h"
 #include "render_job.h"
-#include "shader/program_cache.h"
+#include <facet/shader/program_cache.h>
 #include "ibl_measure.h"
-#include "support/ibl_reference.h"
+#include <facet/reference/ibl_reference.h>
 
 namespace facet {
 namespace {

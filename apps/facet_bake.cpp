@@ -20,18 +20,18 @@
 #include "facet_bake_options.h"
 #include "render_options.h"
 #include "shader_cache.h"
-#include "core/hash.h"
-#include "gpu/context.h"
-#include "gpu/transfer.h"
-#include "graph/compiled_graph.h"
-#include "graph/graph_run.h"
-#include "ibl/ibl_bake.h"
-#include "ibl/method_domain.h"
-#include "io/atomic_file.h"
-#include "io/environment_image.h"
-#include "io/output_set.h"
-#include "render/tonemap_preview.h"
-#include "shader/program_cache.h"
+#include <facet/core/hash.h>
+#include <facet/gpu/context.h>
+#include <facet/gpu/transfer.h>
+#include <facet/graph/compiled_graph.h>
+#include <facet/graph/graph_run.h>
+#include <facet/ibl/ibl_bake.h>
+#include <facet/ibl/method_domain.h>
+#include <facet/io/atomic_file.h>
+#include <facet/io/environment_image.h>
+#include <facet/io/output_set.h>
+#include <facet/render/tonemap_preview.h>
+#include <facet/shader/program_cache.h>
 
 namespace {
 

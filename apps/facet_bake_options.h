@@ -5,10 +5,10 @@
 #include <optional>
 #include <string>
 
-#include "ibl/brdf_lut.h"
-#include "ibl/irradiance.h"
-#include "ibl/specular.h"
-#include "io/environment_image.h"
+#include <facet/ibl/brdf_lut.h>
+#include <facet/ibl/irradiance.h>
+#include <facet/ibl/specular.h>
+#include <facet/io/environment_image.h>
 
 namespace facet {
 

@@ -20,7 +20,7 @@
 #include "bench_sweep.h"
 #include "cli.h"
 #include "facet_bench_options.h"
-#include "io/atomic_file.h"
+#include <facet/io/atomic_file.h>
 
 namespace {
 

@@ -12,16 +12,16 @@
 #include "cli.h"
 #include "interrupt.h"
 #include "facet_render_options.h"
-#include "core/result.h"
-#include "gpu/context.h"
-#include "io/atomic_file.h"
-#include "io/image_io.h"
-#include "io/json_writer.h"
-#include "io/output_set.h"
+#include <facet/core/result.h>
+#include <facet/gpu/context.h>
+#include <facet/io/atomic_file.h>
+#include <facet/io/image_io.h>
+#include <facet/io/json_writer.h>
+#include <facet/io/output_set.h>
 #include "render_job.h"
 #include "render_options.h"
-#include "scene/builtin_scenes.h"
-#include "scene/material_presets.h"
+#include <facet/scene/builtin_scenes.h>
+#include <facet/scene/material_presets.h>
 #include "shader_cache.h"
 
 namespace {

@@ -4,10 +4,10 @@
 #include <stdexcept>
 
 #include "cli.h"
-#include "ibl/ibl_bake.h"
-#include "render/views.h"
+#include <facet/ibl/ibl_bake.h>
+#include <facet/render/views.h>
 #include "render_options.h"
-#include "scene/builtin_scenes.h"
+#include <facet/scene/builtin_scenes.h>
 #include "shader_cache.h"
 
 namespace facet {

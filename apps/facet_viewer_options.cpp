@@ -8,10 +8,10 @@
 #include <system_error>
 
 #include "cli.h"
-#include "render/tonemap.h"
-#include "render/views.h"
+#include <facet/render/tonemap.h>
+#include <facet/render/views.h>
 #include "render_options.h"
-#include "scene/material_presets.h"
+#include <facet/scene/material_presets.h>
 
 namespace facet {
 

@@ -4,10 +4,10 @@
 #include <chrono>
 #include <cstring>
 
-#include "gpu/context.h"
-#include "gpu/transfer.h"
-#include "graph/compiled_graph.h"
-#include "graph/graph_run.h"
+#include <facet/gpu/context.h>
+#include <facet/gpu/transfer.h>
+#include <facet/graph/compiled_graph.h>
+#include <facet/graph/graph_run.h>
 #include "interrupt.h"
 
 namespace facet {

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "core/result.h"
-#include "ibl/ibl_bake.h"
-#include "shader/program_cache.h"
-#include "support/ibl_reference.h"
+#include <facet/core/result.h>
+#include <facet/ibl/ibl_bake.h>
+#include <facet/shader/program_cache.h>
+#include <facet/reference/ibl_reference.h>
 
 namespace facet {
 

@@ -10,7 +10,7 @@
 #include <cstring>
 #include <string>
 
-#include "io/output_set.h"
+#include <facet/io/output_set.h>
 
 namespace facet {
 

@@ -11,7 +11,7 @@
 #include <functional>
 
 #include "cli.h"
-#include "core/result.h"
+#include <facet/core/result.h>
 
 namespace facet {
 

@@ -3,8 +3,8 @@
 // command line (in the units of KHR_lights_punctual).
 #include <string>
 
-#include "core/result.h"
-#include "scene/scene.h"
+#include <facet/core/result.h>
+#include <facet/scene/scene.h>
 
 namespace facet {
 

@@ -7,18 +7,18 @@
 #include <cmath>
 #include <cstring>
 
-#include "gpu/context.h"
-#include "gpu/device_limits.h"
-#include "gpu/transfer.h"
-#include "graph/compiled_graph.h"
-#include "ibl/light_extraction.h"
-#include "ibl/method_domain.h"
-#include "render/frame_budget.h"
-#include "render/gpu_scene.h"
-#include "scene/builtin_scenes.h"
-#include "scene/gltf_loader.h"
-#include "scene/scene_needs.h"
-#include "shader/program_cache.h"
+#include <facet/gpu/context.h>
+#include <facet/gpu/device_limits.h>
+#include <facet/gpu/transfer.h>
+#include <facet/graph/compiled_graph.h>
+#include <facet/ibl/light_extraction.h>
+#include <facet/ibl/method_domain.h>
+#include <facet/render/frame_budget.h>
+#include <facet/render/gpu_scene.h>
+#include <facet/scene/builtin_scenes.h>
+#include <facet/scene/gltf_loader.h>
+#include <facet/scene/scene_needs.h>
+#include <facet/shader/program_cache.h>
 
 namespace facet {
 

@@ -9,13 +9,13 @@
 #include <string>
 #include <vector>
 
-#include "core/result.h"
-#include "graph/graph_run.h"
-#include "ibl/ibl_bake.h"
-#include "render/forward_renderer.h"
-#include "render/reference_renderer.h"
-#include "scene/gltf_loader.h"
-#include "scene/scene.h"
+#include <facet/core/result.h>
+#include <facet/graph/graph_run.h>
+#include <facet/ibl/ibl_bake.h>
+#include <facet/render/forward_renderer.h>
+#include <facet/render/reference_renderer.h>
+#include <facet/scene/gltf_loader.h>
+#include <facet/scene/scene.h>
 #include "light_spec.h"
 
 namespace facet {

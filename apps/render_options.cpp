@@ -3,10 +3,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include "io/environment_image.h"
-#include "scene/builtin_scenes.h"
-#include "scene/gltf_loader.h"
-#include "scene/material_presets.h"
+#include <facet/io/environment_image.h>
+#include <facet/scene/builtin_scenes.h>
+#include <facet/scene/gltf_loader.h>
+#include <facet/scene/material_presets.h>
 
 namespace facet {
 

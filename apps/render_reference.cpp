@@ -4,9 +4,9 @@
 #include <chrono>
 #include <cstring>
 
-#include "gpu/context.h"
-#include "gpu/transfer.h"
-#include "render/gpu_scene.h"
+#include <facet/gpu/context.h>
+#include <facet/gpu/transfer.h>
+#include <facet/render/gpu_scene.h>
 #include "render_session_state.h"
 
 namespace facet {

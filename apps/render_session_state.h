@@ -5,10 +5,10 @@
 #include <optional>
 #include <vector>
 
-#include "graph/compiled_graph.h"
-#include "graph/graph_run.h"
+#include <facet/graph/compiled_graph.h>
+#include <facet/graph/graph_run.h>
 #include "render_job.h"
-#include "shader/program_cache.h"
+#include <facet/shader/program_cache.h>
 
 namespace facet {
 

@@ -3,7 +3,7 @@
 #include <memory>
 #include <string>
 
-#include "gpu/context.h"
+#include <facet/gpu/context.h>
 
 namespace facet {
 

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "gpu/context.h"
+#include <facet/gpu/context.h>
 
 namespace facet {
 

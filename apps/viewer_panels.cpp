@@ -4,10 +4,10 @@
 
 #include <imgui.h>
 
-#include "ibl/ibl_bake.h"
-#include "ibl/method_domain.h"
-#include "scene/builtin_scenes.h"
-#include "scene/material_presets.h"
+#include <facet/ibl/ibl_bake.h>
+#include <facet/ibl/method_domain.h>
+#include <facet/scene/builtin_scenes.h>
+#include <facet/scene/material_presets.h>
 
 namespace facet {
 namespace {

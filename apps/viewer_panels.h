@@ -6,12 +6,12 @@
 #include <string>
 #include <vector>
 
-#include "graph/graph_run.h"
-#include "render/forward_renderer.h"
-#include "render/views.h"
-#include "ibl/irradiance.h"
-#include "ibl/specular.h"
-#include "scene/scene.h"
+#include <facet/graph/graph_run.h>
+#include <facet/render/forward_renderer.h>
+#include <facet/render/views.h>
+#include <facet/ibl/irradiance.h>
+#include <facet/ibl/specular.h>
+#include <facet/scene/scene.h>
 
 namespace facet {
 

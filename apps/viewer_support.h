@@ -9,9 +9,9 @@
 #include <GLFW/glfw3.h>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "gpu/context.h"
-#include "io/image_io.h"
-#include "render/camera.h"
+#include <facet/gpu/context.h>
+#include <facet/io/image_io.h>
+#include <facet/render/camera.h>
 
 namespace facet {
 

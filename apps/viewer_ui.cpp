@@ -4,8 +4,8 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_vulkan.h>
 
-#include "gpu/context.h"
-#include "graph/graph_run.h"
+#include <facet/gpu/context.h>
+#include <facet/graph/graph_run.h>
 #include "swapchain.h"
 
 namespace facet {

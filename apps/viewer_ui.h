@@ -7,7 +7,7 @@
 
 #include <vulkan/vulkan.h>
 
-#include "graph/render_graph.h"
+#include <facet/graph/render_graph.h>
 
 struct GLFWwindow;
 

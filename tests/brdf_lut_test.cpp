@@ -5,13 +5,13 @@
 #include <cmath>
 #include <cstring>
 
-#include "graph/compiled_graph.h"
-#include "graph/graph_run.h"
-#include "gpu/transfer.h"
-#include "ibl/brdf_lut.h"
-#include "shader/program_cache.h"
+#include <facet/graph/compiled_graph.h>
+#include <facet/graph/graph_run.h>
+#include <facet/gpu/transfer.h>
+#include <facet/ibl/brdf_lut.h>
+#include <facet/shader/program_cache.h>
 #include "support/gpu_test.h"
-#include "support/ibl_reference.h"
+#include <facet/reference/ibl_reference.h>
 
 namespace facet {
 namespace {

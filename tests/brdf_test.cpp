@@ -7,10 +7,10 @@
 #include <cstring>
 #include <vector>
 
-#include "gpu/pipeline.h"
-#include "gpu/resources.h"
-#include "gpu/transfer.h"
-#include "shader/compiler.h"
+#include <facet/gpu/pipeline.h>
+#include <facet/gpu/resources.h>
+#include <facet/gpu/transfer.h>
+#include <facet/shader/compiler.h>
 #include "support/gpu_test.h"
 
 namespace facet {

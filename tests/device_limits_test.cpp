@@ -8,10 +8,10 @@
 
 #include <filesystem>
 
-#include "gpu/device_limits.h"
-#include "graph/compiled_graph.h"
-#include "graph/graph_run.h"
-#include "render/frame_budget.h"
+#include <facet/gpu/device_limits.h>
+#include <facet/graph/compiled_graph.h>
+#include <facet/graph/graph_run.h>
+#include <facet/render/frame_budget.h>
 #include "support/gpu_test.h"
 #include "support/process.h"
 

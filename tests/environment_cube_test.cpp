@@ -6,10 +6,10 @@
 #include <random>
 
 #include "ibl/environment_cube.h"
-#include "io/environment_image.h"
+#include <facet/io/environment_image.h>
 #include "support/gpu_test.h"
 #include "support/ibl_gpu.h"
-#include "support/ibl_reference.h"
+#include <facet/reference/ibl_reference.h>
 
 namespace facet {
 namespace {

@@ -9,8 +9,8 @@
 #include <fstream>
 #include <limits>
 
-#include "io/environment_image.h"
-#include "io/image_io.h"
+#include <facet/io/environment_image.h>
+#include <facet/io/image_io.h>
 
 namespace facet {
 namespace {

@@ -14,9 +14,9 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include "io/environment_image.h"
-#include "io/ktx2.h"
-#include "support/ibl_reference.h"
+#include <facet/io/environment_image.h>
+#include <facet/io/ktx2.h>
+#include <facet/reference/ibl_reference.h>
 
 namespace {
 

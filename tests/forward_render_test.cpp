@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "render_job.h"
-#include "scene/builtin_scenes.h"
+#include <facet/scene/builtin_scenes.h>
 #include "support/gpu_test.h"
 
 namespace facet {

@@ -14,7 +14,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "scene/gltf_loader.h"
+#include <facet/scene/gltf_loader.h>
 #include "scene/tangents.h"
 
 namespace facet {

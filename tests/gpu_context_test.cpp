@@ -4,10 +4,10 @@
 #include <cstring>
 #include <vector>
 
-#include "gpu/context.h"
-#include "gpu/memory.h"
-#include "gpu/resources.h"
-#include "gpu/transfer.h"
+#include <facet/gpu/context.h>
+#include <facet/gpu/memory.h>
+#include <facet/gpu/resources.h>
+#include <facet/gpu/transfer.h>
 #include "support/gpu_test.h"
 
 namespace facet {

@@ -9,9 +9,9 @@
 #include <memory>
 #include <string>
 
-#include "gpu/context.h"
+#include <facet/gpu/context.h>
 #include "gpu/fault_injection.h"
-#include "gpu/memory.h"
+#include <facet/gpu/memory.h>
 #include "support/tiny_session.h"
 
 namespace facet {

@@ -1,9 +1,9 @@
 // RenderGraph::compile() is pure: these tests run without any GPU.
 #include <gtest/gtest.h>
 
-#include "core/result.h"
-#include "graph/compiled_graph.h"
-#include "graph/render_graph.h"
+#include <facet/core/result.h>
+#include <facet/graph/compiled_graph.h>
+#include <facet/graph/render_graph.h>
 
 namespace facet {
 namespace {

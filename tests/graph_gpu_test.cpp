@@ -6,12 +6,12 @@
 #include <cmath>
 #include <cstring>
 
-#include "graph/compiled_graph.h"
-#include "graph/graph_run.h"
-#include "graph/render_graph.h"
-#include "gpu/pipeline.h"
-#include "gpu/transfer.h"
-#include "shader/compiler.h"
+#include <facet/graph/compiled_graph.h>
+#include <facet/graph/graph_run.h>
+#include <facet/graph/render_graph.h>
+#include <facet/gpu/pipeline.h>
+#include <facet/gpu/transfer.h>
+#include <facet/shader/compiler.h>
 #include "support/gpu_test.h"
 
 namespace facet {

@@ -5,14 +5,14 @@
 #include <cstring>
 #include <vector>
 
-#include "gpu/context.h"
-#include "gpu/resources.h"
-#include "gpu/transfer.h"
-#include "graph/compiled_graph.h"
-#include "graph/graph_run.h"
-#include "graph/render_graph.h"
-#include "gpu/pipeline.h"
-#include "shader/compiler.h"
+#include <facet/gpu/context.h>
+#include <facet/gpu/resources.h>
+#include <facet/gpu/transfer.h>
+#include <facet/graph/compiled_graph.h>
+#include <facet/graph/graph_run.h>
+#include <facet/graph/render_graph.h>
+#include <facet/gpu/pipeline.h>
+#include <facet/shader/compiler.h>
 
 namespace facet {
 namespace {

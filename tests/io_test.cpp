@@ -8,9 +8,9 @@
 #include <fstream>
 #include <vector>
 
-#include "io/atomic_file.h"
-#include "io/image_io.h"
-#include "io/json_writer.h"
+#include <facet/io/atomic_file.h>
+#include <facet/io/image_io.h>
+#include <facet/io/json_writer.h>
 
 namespace facet {
 namespace {

@@ -11,7 +11,7 @@
 #include <limits>
 #include <random>
 
-#include "io/ktx2.h"
+#include <facet/io/ktx2.h>
 
 namespace fs = std::filesystem;
 using facet::Ktx2Image;

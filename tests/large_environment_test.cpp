@@ -16,7 +16,7 @@
 #include <sstream>
 
 #include "io/box_downsample.h"
-#include "io/environment_image.h"
+#include <facet/io/environment_image.h>
 #include "support/sanitizers.h"
 #include "support/measured_process.h"
 #include "support/rle_hdr.h"

@@ -12,7 +12,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "scene/gltf_loader.h"
+#include <facet/scene/gltf_loader.h>
 #include "support/sanitizers.h"
 #include "support/large_models.h"
 #include "support/measured_process.h"

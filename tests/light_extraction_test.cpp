@@ -5,9 +5,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "ibl/light_extraction.h"
-#include "io/environment_image.h"
-#include "support/ibl_reference.h"
+#include <facet/ibl/light_extraction.h>
+#include <facet/io/environment_image.h>
+#include <facet/reference/ibl_reference.h>
 
 namespace facet {
 namespace {

@@ -10,8 +10,8 @@
 #include <algorithm>
 #include <fstream>
 
-#include "io/atomic_file.h"
-#include "io/output_set.h"
+#include <facet/io/atomic_file.h>
+#include <facet/io/output_set.h>
 #include "support/output_files.h"
 
 namespace {

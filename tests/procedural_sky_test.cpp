@@ -5,11 +5,11 @@
 #include <cmath>
 #include <cstring>
 
-#include "graph/compiled_graph.h"
-#include "graph/graph_run.h"
-#include "gpu/transfer.h"
-#include "ibl/procedural_sky.h"
-#include "shader/program_cache.h"
+#include <facet/graph/compiled_graph.h>
+#include <facet/graph/graph_run.h>
+#include <facet/gpu/transfer.h>
+#include <facet/ibl/procedural_sky.h>
+#include <facet/shader/program_cache.h>
 #include "support/gpu_test.h"
 
 namespace facet {

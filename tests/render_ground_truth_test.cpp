@@ -11,8 +11,8 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "io/environment_image.h"
-#include "io/image_io.h"
+#include <facet/io/environment_image.h>
+#include <facet/io/image_io.h>
 #include "render_job.h"
 #include "support/gpu_test.h"
 #include "support/render_truth.h"

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "gpu/context.h"
-#include "gpu/memory.h"
+#include <facet/gpu/context.h>
+#include <facet/gpu/memory.h>
 #include "support/sanitizers.h"
 #include "support/tiny_session.h"
 

@@ -6,7 +6,7 @@
 
 #include <unistd.h>
 
-#include "shader/compiler.h"
+#include <facet/shader/compiler.h>
 
 namespace facet {
 namespace {

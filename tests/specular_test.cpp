@@ -5,13 +5,13 @@
 #include <cmath>
 #include <random>
 
-#include "gpu/resources.h"
+#include <facet/gpu/resources.h>
 #include "ibl/environment_cube.h"
-#include "ibl/specular.h"
-#include "io/environment_image.h"
+#include <facet/ibl/specular.h>
+#include <facet/io/environment_image.h>
 #include "support/gpu_test.h"
 #include "support/ibl_gpu.h"
-#include "support/ibl_reference.h"
+#include <facet/reference/ibl_reference.h>
 
 namespace facet {
 namespace {

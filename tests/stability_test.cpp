@@ -12,14 +12,14 @@
 #include <map>
 
 #include "ibl/environment_cube.h"
-#include "ibl/irradiance.h"
-#include "ibl/method_domain.h"
-#include "ibl/specular.h"
+#include <facet/ibl/irradiance.h>
+#include <facet/ibl/method_domain.h>
+#include <facet/ibl/specular.h>
 #include "render_job.h"
-#include "scene/builtin_scenes.h"
+#include <facet/scene/builtin_scenes.h>
 #include "support/gpu_test.h"
 #include "support/ibl_gpu.h"
-#include "support/ibl_reference.h"
+#include <facet/reference/ibl_reference.h>
 
 namespace facet {
 namespace {

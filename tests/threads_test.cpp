@@ -11,8 +11,8 @@
 #include <thread>
 #include <vector>
 
-#include "gpu/context.h"
-#include "gpu/memory.h"
+#include <facet/gpu/context.h>
+#include <facet/gpu/memory.h>
 #include "support/tiny_session.h"
 
 namespace facet {

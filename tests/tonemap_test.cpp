@@ -6,12 +6,12 @@
 #include <cmath>
 #include <cstring>
 
-#include "gpu/transfer.h"
-#include "graph/compiled_graph.h"
-#include "graph/graph_run.h"
-#include "graph/transfer_passes.h"
-#include "render/tonemap.h"
-#include "shader/program_cache.h"
+#include <facet/gpu/transfer.h>
+#include <facet/graph/compiled_graph.h>
+#include <facet/graph/graph_run.h>
+#include <facet/graph/transfer_passes.h>
+#include <facet/render/tonemap.h>
+#include <facet/shader/program_cache.h>
 #include "support/gpu_test.h"
 
 namespace facet {

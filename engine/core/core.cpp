@@ -1,7 +1,7 @@
-#include "core/hash.h"
-#include "core/log.h"
-#include "core/result.h"
-#include "core/units.h"
+#include <facet/core/hash.h>
+#include <facet/core/log.h>
+#include <facet/core/result.h>
+#include <facet/core/units.h>
 
 #include <cstdio>
 #include <cstdlib>

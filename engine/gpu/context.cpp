@@ -1,4 +1,4 @@
-#include "gpu/context.h"
+#include <facet/gpu/context.h>
 
 #include <dlfcn.h>
 #include <link.h>
@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "core/log.h"
+#include <facet/core/log.h>
 #include "gpu/fault_injection.h"
-#include "gpu/memory.h"
+#include <facet/gpu/memory.h>
 
 namespace facet {
 

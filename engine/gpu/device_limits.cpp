@@ -1,10 +1,10 @@
-#include "gpu/device_limits.h"
+#include <facet/gpu/device_limits.h>
 
 #include <algorithm>
 #include <cstdio>
 
-#include "gpu/context.h"
-#include "graph/compiled_graph.h"
+#include <facet/gpu/context.h>
+#include <facet/graph/compiled_graph.h>
 
 namespace facet {
 

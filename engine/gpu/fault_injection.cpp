@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <mutex>
 
-#include "core/log.h"
+#include <facet/core/log.h>
 
 namespace facet {
 

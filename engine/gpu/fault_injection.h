@@ -12,7 +12,7 @@
 
 #include <vulkan/vulkan.h>
 
-#include "core/result.h"
+#include <facet/core/result.h>
 
 namespace facet {
 

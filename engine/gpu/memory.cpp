@@ -1,10 +1,10 @@
-#include "gpu/memory.h"
+#include <facet/gpu/memory.h>
 
 #include <algorithm>
 #include <optional>
 #include <string>
 
-#include "core/result.h"
+#include <facet/core/result.h>
 #include "gpu/fault_injection.h"
 
 namespace facet {

@@ -1,10 +1,10 @@
-#include "gpu/pipeline.h"
+#include <facet/gpu/pipeline.h>
 
 #include <utility>
 #include <vector>
 
-#include "core/result.h"
-#include "gpu/context.h"
+#include <facet/core/result.h>
+#include <facet/gpu/context.h>
 #include "gpu/fault_injection.h"
 
 namespace facet {

@@ -1,9 +1,9 @@
-#include "gpu/resources.h"
+#include <facet/gpu/resources.h>
 
 #include <utility>
 
-#include "core/result.h"
-#include "gpu/context.h"
+#include <facet/core/result.h>
+#include <facet/gpu/context.h>
 
 namespace facet {
 

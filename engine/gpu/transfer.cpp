@@ -1,9 +1,9 @@
-#include "gpu/transfer.h"
+#include <facet/gpu/transfer.h>
 
 #include <cstring>
 
-#include "core/result.h"
-#include "gpu/context.h"
+#include <facet/core/result.h>
+#include <facet/gpu/context.h>
 
 namespace facet {
 

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "core/result.h"
+#include <facet/core/result.h>
 
 namespace facet {
 

@@ -3,7 +3,7 @@
 // and the image layout it needs. Pure functions (no Vulkan calls).
 #include <vulkan/vulkan.h>
 
-#include "graph/types.h"
+#include <facet/graph/types.h>
 
 namespace facet {
 

@@ -1,7 +1,7 @@
 #pragma once
 // Derives every barrier and layout transition of a compiled graph from the declared
 // accesses (synchronisation2), tracking each image subresource separately.
-#include "graph/compiled_graph.h"
+#include <facet/graph/compiled_graph.h>
 
 namespace facet {
 

@@ -6,10 +6,10 @@
 #include <queue>
 #include <set>
 
-#include "core/result.h"
+#include <facet/core/result.h>
 #include "graph/access.h"
 #include "graph/barrier_builder.h"
-#include "graph/compiled_graph.h"
+#include <facet/graph/compiled_graph.h>
 
 namespace facet {
 

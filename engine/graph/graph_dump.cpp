@@ -2,7 +2,7 @@
 #include <sstream>
 
 #include "graph/access.h"
-#include "graph/compiled_graph.h"
+#include <facet/graph/compiled_graph.h>
 
 namespace facet {
 

@@ -1,11 +1,11 @@
-#include "graph/graph_run.h"
+#include <facet/graph/graph_run.h>
 
 #include <algorithm>
 #include <cstring>
 
-#include "core/result.h"
-#include "gpu/context.h"
-#include "gpu/device_limits.h"
+#include <facet/core/result.h>
+#include <facet/gpu/context.h>
+#include <facet/gpu/device_limits.h>
 
 namespace facet {
 

@@ -1,6 +1,6 @@
-#include "graph/render_graph.h"
+#include <facet/graph/render_graph.h>
 
-#include "core/result.h"
+#include <facet/core/result.h>
 #include "graph/access.h"
 
 namespace facet {

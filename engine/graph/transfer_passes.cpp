@@ -1,6 +1,6 @@
-#include "graph/transfer_passes.h"
+#include <facet/graph/transfer_passes.h>
 
-#include "graph/graph_run.h"
+#include <facet/graph/graph_run.h>
 
 namespace facet {
 

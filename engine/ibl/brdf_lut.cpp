@@ -1,7 +1,7 @@
-#include "ibl/brdf_lut.h"
+#include <facet/ibl/brdf_lut.h>
 
-#include "graph/graph_run.h"
-#include "shader/program_cache.h"
+#include <facet/graph/graph_run.h>
+#include <facet/shader/program_cache.h>
 
 namespace facet {
 

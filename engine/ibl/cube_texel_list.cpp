@@ -1,7 +1,7 @@
 #include "ibl/cube_texel_list.h"
 
-#include "graph/graph_run.h"
-#include "shader/program_cache.h"
+#include <facet/graph/graph_run.h>
+#include <facet/shader/program_cache.h>
 
 namespace facet {
 

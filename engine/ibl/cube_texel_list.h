@@ -5,8 +5,8 @@
 // solid angle, solid angle). Shared helpers for passes that write cube levels.
 #include <cstdint>
 
-#include "core/result.h"
-#include "graph/render_graph.h"
+#include <facet/core/result.h>
+#include <facet/graph/render_graph.h>
 
 namespace facet {
 

@@ -3,8 +3,8 @@
 // equirect -> level 0, then each level from the one above by solid-angle weighting.
 #include <cstdint>
 
-#include "core/result.h"
-#include "graph/render_graph.h"
+#include <facet/core/result.h>
+#include <facet/graph/render_graph.h>
 
 namespace facet {
 

@@ -1,17 +1,17 @@
-#include "ibl/ibl_bake.h"
+#include <facet/ibl/ibl_bake.h>
 
 #include <algorithm>
 #include <cstring>
 
-#include "gpu/context.h"
-#include "gpu/device_limits.h"
-#include "gpu/resources.h"
-#include "graph/compiled_graph.h"
-#include "graph/graph_run.h"
-#include "graph/transfer_passes.h"
-#include "gpu/transfer.h"
+#include <facet/gpu/context.h>
+#include <facet/gpu/device_limits.h>
+#include <facet/gpu/resources.h>
+#include <facet/graph/compiled_graph.h>
+#include <facet/graph/graph_run.h>
+#include <facet/graph/transfer_passes.h>
+#include <facet/gpu/transfer.h>
 #include "ibl/environment_cube.h"
-#include "shader/program_cache.h"
+#include <facet/shader/program_cache.h>
 
 namespace facet {
 

@@ -1,8 +1,8 @@
 // The names the command lines take for IBL methods and built-in environments, apart
 // from the passes so that option parsing (and its fuzz target) needs no GPU code.
-#include "ibl/ibl_bake.h"
-#include "ibl/irradiance.h"
-#include "ibl/specular.h"
+#include <facet/ibl/ibl_bake.h>
+#include <facet/ibl/irradiance.h>
+#include <facet/ibl/specular.h>
 
 namespace facet {
 

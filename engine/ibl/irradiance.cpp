@@ -1,11 +1,11 @@
-#include "ibl/irradiance.h"
+#include <facet/ibl/irradiance.h>
 
 #include <cmath>
 
-#include "gpu/resources.h"
+#include <facet/gpu/resources.h>
 #include "ibl/cube_texel_list.h"
-#include "graph/graph_run.h"
-#include "shader/program_cache.h"
+#include <facet/graph/graph_run.h>
+#include <facet/shader/program_cache.h>
 
 namespace facet {
 

@@ -1,4 +1,4 @@
-#include "ibl/light_extraction.h"
+#include <facet/ibl/light_extraction.h>
 
 #include <algorithm>
 #include <cmath>

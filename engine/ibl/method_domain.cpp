@@ -1,10 +1,10 @@
-#include "ibl/method_domain.h"
+#include <facet/ibl/method_domain.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "ibl/light_extraction.h"
+#include <facet/ibl/light_extraction.h>
 
 namespace facet {
 

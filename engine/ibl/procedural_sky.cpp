@@ -1,10 +1,10 @@
-#include "ibl/procedural_sky.h"
+#include <facet/ibl/procedural_sky.h>
 
 #include <cmath>
 
-#include "core/hash.h"
-#include "graph/graph_run.h"
-#include "shader/program_cache.h"
+#include <facet/core/hash.h>
+#include <facet/graph/graph_run.h>
+#include <facet/shader/program_cache.h>
 
 namespace facet {
 

@@ -1,13 +1,13 @@
-#include "ibl/specular.h"
+#include <facet/ibl/specular.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "gpu/resources.h"
-#include "graph/graph_run.h"
+#include <facet/gpu/resources.h>
+#include <facet/graph/graph_run.h>
 #include "ibl/cube_texel_list.h"
-#include "ibl/irradiance.h"
-#include "shader/program_cache.h"
+#include <facet/ibl/irradiance.h>
+#include <facet/shader/program_cache.h>
 
 namespace facet {
 

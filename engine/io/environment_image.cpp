@@ -1,4 +1,4 @@
-#include "io/environment_image.h"
+#include <facet/io/environment_image.h>
 
 #include <OpenImageIO/imageio.h>
 
@@ -9,7 +9,7 @@
 #include <functional>
 #include <optional>
 
-#include "core/hash.h"
+#include <facet/core/hash.h>
 #include "io/box_downsample.h"
 #include "io/exr_header.h"
 

@@ -1,4 +1,4 @@
-#include "io/image_io.h"
+#include <facet/io/image_io.h>
 
 #include <OpenImageIO/imageio.h>
 
@@ -6,7 +6,7 @@
 #include <memory>
 #include <vector>
 
-#include "io/atomic_file.h"
+#include <facet/io/atomic_file.h>
 
 namespace facet {
 

@@ -1,4 +1,4 @@
-#include "io/ktx2.h"
+#include <facet/io/ktx2.h>
 
 #include <algorithm>
 #include <bit>
@@ -9,7 +9,7 @@
 #include <set>
 #include <system_error>
 
-#include "io/atomic_file.h"
+#include <facet/io/atomic_file.h>
 
 // Written from the KTX File Format Specification 2.0 (sections named in the comments) and
 // the Khronos Data Format Specification 1.3 (Basic Data Format Descriptor block).

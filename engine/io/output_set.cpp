@@ -1,4 +1,4 @@
-#include "io/output_set.h"
+#include <facet/io/output_set.h>
 
 #include <signal.h>
 #include <unistd.h>
@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <system_error>
 
-#include "core/result.h"
-#include "io/atomic_file.h"
+#include <facet/core/result.h>
+#include <facet/io/atomic_file.h>
 
 namespace facet {
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/result.h"
+#include <facet/core/result.h>
 #include "io/image_header.h"
 
 namespace facet {

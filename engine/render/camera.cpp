@@ -1,4 +1,4 @@
-#include "render/camera.h"
+#include <facet/render/camera.h>
 
 #include <algorithm>
 #include <cmath>

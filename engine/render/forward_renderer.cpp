@@ -1,15 +1,15 @@
-#include "render/forward_renderer.h"
+#include <facet/render/forward_renderer.h>
 
 #include <algorithm>
 #include <cstring>
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "gpu/context.h"
-#include "gpu/pipeline.h"
-#include "graph/graph_run.h"
-#include "render/gpu_scene.h"
-#include "shader/program_cache.h"
+#include <facet/gpu/context.h>
+#include <facet/gpu/pipeline.h>
+#include <facet/graph/graph_run.h>
+#include <facet/render/gpu_scene.h>
+#include <facet/shader/program_cache.h>
 
 namespace facet {
 namespace {

@@ -1,9 +1,9 @@
-#include "render/frame_budget.h"
+#include <facet/render/frame_budget.h>
 
 #include <algorithm>
 #include <string>
 
-#include "render/views.h"
+#include <facet/render/views.h>
 
 namespace facet {
 

@@ -1,13 +1,13 @@
-#include "render/gpu_scene.h"
+#include <facet/render/gpu_scene.h>
 
 #include <algorithm>
 #include <bit>
 #include <cstring>
 #include <span>
 
-#include "core/result.h"
-#include "gpu/context.h"
-#include "gpu/transfer.h"
+#include <facet/core/result.h>
+#include <facet/gpu/context.h>
+#include <facet/gpu/transfer.h>
 
 namespace facet {
 namespace {

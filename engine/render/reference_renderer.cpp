@@ -1,15 +1,15 @@
-#include "render/reference_renderer.h"
+#include <facet/render/reference_renderer.h>
 
 #include <cmath>
 #include <cstring>
 
-#include "gpu/context.h"
-#include "gpu/pipeline.h"
-#include "gpu/transfer.h"
-#include "graph/compiled_graph.h"
-#include "graph/graph_run.h"
+#include <facet/gpu/context.h>
+#include <facet/gpu/pipeline.h>
+#include <facet/gpu/transfer.h>
+#include <facet/graph/compiled_graph.h>
+#include <facet/graph/graph_run.h>
 #include "render/environment_distribution.h"
-#include "shader/program_cache.h"
+#include <facet/shader/program_cache.h>
 
 namespace facet {
 namespace {

@@ -1,8 +1,8 @@
-#include "render/tonemap.h"
+#include <facet/render/tonemap.h>
 
-#include "gpu/resources.h"
-#include "graph/graph_run.h"
-#include "shader/program_cache.h"
+#include <facet/gpu/resources.h>
+#include <facet/graph/graph_run.h>
+#include <facet/shader/program_cache.h>
 
 namespace facet {
 

@@ -1,6 +1,6 @@
 // Tone mapping operators by name, apart from the pass so that option parsing (and its
 // fuzz target) needs no GPU code.
-#include "render/tonemap.h"
+#include <facet/render/tonemap.h>
 
 namespace facet {
 namespace {

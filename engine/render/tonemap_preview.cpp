@@ -1,7 +1,7 @@
-#include "render/tonemap_preview.h"
+#include <facet/render/tonemap_preview.h>
 
-#include "graph/graph_run.h"
-#include "shader/program_cache.h"
+#include <facet/graph/graph_run.h>
+#include <facet/shader/program_cache.h>
 
 namespace facet {
 

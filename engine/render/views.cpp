@@ -1,4 +1,4 @@
-#include "render/views.h"
+#include <facet/render/views.h>
 
 #include <sstream>
 

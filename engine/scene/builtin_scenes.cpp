@@ -1,10 +1,10 @@
-#include "scene/builtin_scenes.h"
+#include <facet/scene/builtin_scenes.h>
 
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/hash.h"
+#include <facet/core/hash.h>
 
 namespace facet {
 namespace {

@@ -10,7 +10,7 @@
 #include "io/box_downsample.h"
 #include "io/texture_decode.h"
 #include "scene/gltf_accessors.h"
-#include "core/units.h"
+#include <facet/core/units.h>
 #include "scene/gltf_errors.h"
 
 namespace facet::gltf_detail {

@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "io/image_header.h"
-#include "scene/gltf_loader.h"
+#include <facet/scene/gltf_loader.h>
 #include "scene/gltf_parse.h"
-#include "scene/scene.h"
+#include <facet/scene/scene.h>
 
 namespace facet::gltf_detail {
 

@@ -1,4 +1,4 @@
-#include "scene/gltf_loader.h"
+#include <facet/scene/gltf_loader.h>
 
 // Debian's libtinygltf is a compiled library: include the declarations only.
 #include <tiny_gltf.h>
@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "core/hash.h"
-#include "core/log.h"
+#include <facet/core/hash.h>
+#include <facet/core/log.h>
 #include "scene/gltf_accessors.h"
 #include "scene/gltf_errors.h"
 #include "scene/gltf_images.h"

@@ -5,7 +5,7 @@
 #include <cstddef>
 
 #include "scene/gltf_parse.h"
-#include "scene/scene.h"
+#include <facet/scene/scene.h>
 
 namespace facet::gltf_detail {
 

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string>
 
-#include "scene/gltf_loader.h"
-#include "scene/scene.h"
+#include <facet/scene/gltf_loader.h>
+#include <facet/scene/scene.h>
 
 namespace facet::gltf_detail {
 

@@ -2,7 +2,7 @@
 // Internal to the glTF loader: the node hierarchy into instances, cameras and lights.
 #include <tiny_gltf.h>
 
-#include "scene/scene.h"
+#include <facet/scene/scene.h>
 
 namespace facet::gltf_detail {
 

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/units.h"
+#include <facet/core/units.h>
 #include "scene/gltf_errors.h"
 
 namespace facet::gltf_detail {

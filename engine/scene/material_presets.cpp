@@ -1,4 +1,4 @@
-#include "scene/material_presets.h"
+#include <facet/scene/material_presets.h>
 
 namespace facet {
 

@@ -1,4 +1,4 @@
-#include "scene/scene.h"
+#include <facet/scene/scene.h>
 
 #include <limits>
 

@@ -1,4 +1,4 @@
-#include "scene/scene_needs.h"
+#include <facet/scene/scene_needs.h>
 
 #include <algorithm>
 

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <span>
 
-#include "scene/scene.h"
+#include <facet/scene/scene.h>
 
 namespace facet {
 

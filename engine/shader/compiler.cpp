@@ -1,4 +1,4 @@
-#include "shader/compiler.h"
+#include <facet/shader/compiler.h>
 
 #include <unistd.h>
 
@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/hash.h"
-#include "core/log.h"
+#include <facet/core/hash.h>
+#include <facet/core/log.h>
 #include "shader/glslang_frontend.h"
 
 namespace facet {

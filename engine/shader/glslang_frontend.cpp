@@ -10,7 +10,7 @@
 #include <regex>
 #include <sstream>
 
-#include "core/log.h"
+#include <facet/core/log.h>
 
 namespace facet::glslang_frontend {
 

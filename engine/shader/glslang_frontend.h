@@ -5,9 +5,9 @@
 #include <string_view>
 #include <vector>
 
-#include "core/result.h"
-#include "shader/compiler.h"
-#include "shader/shader_library.h"
+#include <facet/core/result.h>
+#include <facet/shader/compiler.h>
+#include <facet/shader/shader_library.h>
 
 namespace facet::glslang_frontend {
 

@@ -1,6 +1,6 @@
-#include "shader/program_cache.h"
+#include <facet/shader/program_cache.h>
 
-#include "gpu/context.h"
+#include <facet/gpu/context.h>
 
 namespace facet {
 

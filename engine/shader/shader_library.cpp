@@ -1,4 +1,4 @@
-#include "shader/shader_library.h"
+#include <facet/shader/shader_library.h>
 
 #include <cstdlib>
 #include <fstream>

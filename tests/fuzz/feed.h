@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/result.h"
+#include <facet/core/result.h>
 
 namespace facet::fuzz {
 

@@ -10,7 +10,7 @@
 #include "facet_viewer_options.h"
 #include "feed.h"
 #include "light_spec.h"
-#include "render/views.h"
+#include <facet/render/views.h>
 
 namespace facet::fuzz {
 

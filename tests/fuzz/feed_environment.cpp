@@ -5,7 +5,7 @@
 #include <cstring>
 
 #include "feed.h"
-#include "io/environment_image.h"
+#include <facet/io/environment_image.h>
 #include "io/exr_header.h"
 
 namespace facet::fuzz {

@@ -3,8 +3,8 @@
 #include <vector>
 
 #include "feed.h"
-#include "io/image_io.h"
-#include "scene/gltf_loader.h"
+#include <facet/io/image_io.h>
+#include <facet/scene/gltf_loader.h>
 
 namespace facet::fuzz {
 

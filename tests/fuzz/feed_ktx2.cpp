@@ -1,7 +1,7 @@
 #include <algorithm>
 
 #include "feed.h"
-#include "io/ktx2.h"
+#include <facet/io/ktx2.h>
 
 namespace facet::fuzz {
 

@@ -9,8 +9,8 @@
 #include <limits>
 #include <utility>
 
-#include "io/image_io.h"
-#include "io/ktx2.h"
+#include <facet/io/image_io.h>
+#include <facet/io/ktx2.h>
 #include "make_corpus.h"
 
 namespace facet::fuzz {

@@ -3,7 +3,7 @@
 // synchronization validation on; every GPU test fails on any validation message.
 #include <gtest/gtest.h>
 
-#include "gpu/context.h"
+#include <facet/gpu/context.h>
 
 namespace facet::test {
 

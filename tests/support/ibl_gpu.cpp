@@ -4,13 +4,13 @@
 
 #include <cstring>
 
-#include "gpu/context.h"
-#include "gpu/transfer.h"
-#include "graph/compiled_graph.h"
-#include "graph/graph_run.h"
-#include "graph/transfer_passes.h"
+#include <facet/gpu/context.h>
+#include <facet/gpu/transfer.h>
+#include <facet/graph/compiled_graph.h>
+#include <facet/graph/graph_run.h>
+#include <facet/graph/transfer_passes.h>
 #include "ibl/environment_cube.h"
-#include "shader/program_cache.h"
+#include <facet/shader/program_cache.h>
 
 namespace facet::test {
 

@@ -4,8 +4,8 @@
 #include <functional>
 #include <vector>
 
-#include "graph/render_graph.h"
-#include "support/ibl_reference.h"
+#include <facet/graph/render_graph.h>
+#include <facet/reference/ibl_reference.h>
 
 namespace facet {
 class Context;

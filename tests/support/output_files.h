@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "core/hash.h"
+#include <facet/core/hash.h>
 
 namespace facet::test {
 

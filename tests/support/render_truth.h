@@ -9,7 +9,7 @@
 #include <functional>
 #include <vector>
 
-#include "support/ibl_reference.h"
+#include <facet/reference/ibl_reference.h>
 
 namespace facet::test {
 

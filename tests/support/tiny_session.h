@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "gpu/context.h"
+#include <facet/gpu/context.h>
 #include "render_job.h"
 
 namespace facet::test {

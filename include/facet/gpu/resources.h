@@ -1,0 +1,113 @@
+#pragma once
+// Owning wrappers for buffers, images and samplers: each destroys its Vulkan objects
+// and frees its memory exactly once (move-only).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include <facet/gpu/memory.h>
+
+namespace facet {
+
+class Context;
+
+struct ImageDesc {
+    VkFormat format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    uint32_t width = 1;
+    uint32_t height = 1;
+    uint32_t mip_levels = 1;
+    uint32_t array_layers = 1;  // 6 for a cube
+    bool cube = false;
+    VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+
+    bool operator==(const ImageDesc&) const = default;
+    uint32_t mip_width(uint32_t mip) const { return width > (1u << mip) ? width >> mip : 1u; }
+    uint32_t mip_height(uint32_t mip) const { return height > (1u << mip) ? height >> mip : 1u; }
+};
+
+// Every mip level and layer.
+VkImageSubresourceRange whole_range(const ImageDesc& desc);
+VkImageAspectFlags aspect_of(VkFormat format);
+uint32_t bytes_per_texel(VkFormat format);  // throws UsageError for formats it does not know
+
+class Buffer {
+public:
+    Buffer() = default;
+    Buffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory,
+           const std::string& name);
+    ~Buffer();
+    Buffer(Buffer&& other) noexcept;
+    Buffer& operator=(Buffer&& other) noexcept;
+
+    VkBuffer handle() const { return buffer_; }
+    VkDeviceSize size() const { return size_; }
+    // Host pointer (upload/readback memory only); call invalidate() before reading.
+    void* mapped() const { return allocation_.mapped; }
+    void flush() const;
+    void invalidate() const;
+    explicit operator bool() const { return buffer_ != VK_NULL_HANDLE; }
+
+private:
+    void reset();
+    Context* context_ = nullptr;
+    VkBuffer buffer_ = VK_NULL_HANDLE;
+    VkDeviceSize size_ = 0;
+    Allocation allocation_;
+};
+
+class Image {
+public:
+    Image() = default;
+    Image(Context& context, const ImageDesc& desc, VkImageUsageFlags usage,
+          const std::string& name);
+    ~Image();
+    Image(Image&& other) noexcept;
+    Image& operator=(Image&& other) noexcept;
+
+    VkImage handle() const { return image_; }
+    const ImageDesc& desc() const { return desc_; }
+    VkImageUsageFlags usage() const { return usage_; }
+    explicit operator bool() const { return image_ != VK_NULL_HANDLE; }
+
+    // A view of some mips/layers (cached; owned by the image). view_type
+    // VK_IMAGE_VIEW_TYPE_MAX_ENUM means: cube for cube images, else 2D / 2D array.
+    VkImageView view(VkImageSubresourceRange range,
+                     VkImageViewType view_type = VK_IMAGE_VIEW_TYPE_MAX_ENUM);
+    VkImageView view() { return view(whole_range(desc_)); }
+
+private:
+    void reset();
+    struct CachedView {
+        VkImageSubresourceRange range;
+        VkImageViewType type;
+        VkImageView view;
+    };
+    Context* context_ = nullptr;
+    VkImage image_ = VK_NULL_HANDLE;
+    ImageDesc desc_;
+    VkImageUsageFlags usage_ = 0;
+    std::string name_;
+    Allocation allocation_;
+    std::vector<CachedView> views_;
+};
+
+class Sampler {
+public:
+    Sampler() = default;
+    // Clamp-to-edge on all axes (repeat in u when repeat_u: equirect longitude).
+    Sampler(Context& context, VkFilter filter, bool mipmaps, bool repeat_u, const std::string& name);
+    // Any other state (e.g. a glTF sampler's filters and wraps).
+    Sampler(Context& context, const VkSamplerCreateInfo& info, const std::string& name);
+    ~Sampler();
+    Sampler(Sampler&& other) noexcept;
+    Sampler& operator=(Sampler&& other) noexcept;
+    VkSampler handle() const { return sampler_; }
+
+private:
+    Context* context_ = nullptr;
+    VkSampler sampler_ = VK_NULL_HANDLE;
+};
+
+}  // namespace facet

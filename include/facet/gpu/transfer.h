@@ -1,0 +1,39 @@
+#pragma once
+// Staging upload and readback outside any render graph (for setup and tests).
+// Inside a graph, copies are passes of their own.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include <facet/gpu/resources.h>
+
+namespace facet {
+
+// Copies `data` (tightly packed texels of one mip level/layer) into that subresource,
+// which is in `current_layout` (UNDEFINED: contents may be discarded) and is left in
+// `final_layout`. Waits for completion.
+void upload_image(Context& context, Image& image, uint32_t mip, uint32_t layer,
+                  std::span<const std::byte> data, VkImageLayout current_layout,
+                  VkImageLayout final_layout);
+
+// Reads one mip level/layer back (tightly packed texels). The image must be in
+// `current_layout` and is left in it. Waits for completion.
+std::vector<std::byte> read_image(Context& context, const Image& image, uint32_t mip,
+                                  uint32_t layer, VkImageLayout current_layout);
+
+// One image layout transition / dependency (synchronization2), for work recorded outside
+// a render graph (uploads, mip generation, clears); the graph derives its own barriers.
+void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageSubresourceRange range, VkImageLayout from,
+                   VkImageLayout to, VkPipelineStageFlags2 src_stages, VkAccessFlags2 src_access,
+                   VkPipelineStageFlags2 dst_stages, VkAccessFlags2 dst_access);
+
+// A global memory barrier (synchronization2), e.g. compute writes -> host reads.
+void memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stages, VkAccessFlags2 src_access,
+                    VkPipelineStageFlags2 dst_stages, VkAccessFlags2 dst_access);
+
+void upload_buffer(Context& context, Buffer& buffer, std::span<const std::byte> data);
+std::vector<std::byte> read_buffer(Context& context, const Buffer& buffer);
+
+}  // namespace facet

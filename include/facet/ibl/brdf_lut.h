@@ -1,0 +1,29 @@
+#pragma once
+// The split-sum BRDF LUT as two compute passes: the scale and bias (A, B) of
+// specular = prefiltered * (F0 * A + B), then the average albedo per roughness for
+// multiscatter compensation in the third channel. Layout fixed in design.md.
+#include <cstdint>
+
+#include <facet/core/result.h>
+#include <facet/graph/render_graph.h>
+
+namespace facet {
+
+class ProgramCache;
+
+enum class LutVisibility {
+    smith_schlick_ggx,  // the thesis: G_Smith with k = r^2 / 2
+    height_correlated,  // glTF / Heitz 2014
+};
+
+struct BrdfLutSettings {
+    uint32_t size = 128;            // width = height
+    uint32_t sample_count = 2048;   // Hammersley samples per texel (max abs error < 1e-3)
+    LutVisibility visibility = LutVisibility::smith_schlick_ggx;
+};
+
+// Writes the LUT into `lut` (RGBA32F, settings.size square); returns its final version.
+Result<ImageHandle> add_brdf_lut_passes(RenderGraph& graph, ProgramCache& programs, const BrdfLutSettings& settings,
+                                        ImageHandle lut);
+
+}  // namespace facet

@@ -1,0 +1,105 @@
+#pragma once
+// The whole image-based-lighting bake as passes of a caller's render graph: the
+// environment (a file's texels or a procedural sky), its cube, the irradiance cube, the
+// prefiltered specular cube and the BRDF LUT. facet-bake exports them to files;
+// facet-render feeds them to the forward pass in the same graph.
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <facet/core/result.h>
+#include <facet/graph/render_graph.h>
+#include <facet/ibl/brdf_lut.h>
+#include <facet/ibl/irradiance.h>
+#include <facet/ibl/procedural_sky.h>
+#include <facet/ibl/specular.h>
+#include <facet/io/environment_image.h>
+
+namespace facet {
+
+class Buffer;
+class Context;
+class ProgramCache;
+class Sampler;
+
+// An environment by name: builtin:sky, builtin:white, or an image file.
+struct EnvironmentSource {
+    std::string name;
+    std::optional<ProceduralSky> sky;
+    EnvironmentImage image;  // file texels (empty for a procedural sky)
+    std::string content_hash;
+    uint32_t width = 0, height = 0;                // what the bake uses
+    uint32_t source_width = 0, source_height = 0;  // the file's (larger when downsampled on load)
+};
+
+// `builtin_width`: width of a procedural environment (height = width / 2); it may not
+// exceed `file_options.max_width`, which files wider than it are downsampled to.
+Result<EnvironmentSource> resolve_environment(const std::string& name, uint32_t builtin_width = 1024,
+                                              const EnvironmentLoadOptions& file_options = {});
+std::string builtin_environment_names();  // "builtin:sky, builtin:white"
+
+// A procedural environment's texels, computed on the GPU and read back, so that CPU
+// work (light extraction) can use them; file environments are left as they are.
+Status materialize_environment(Context& context, ProgramCache& programs, EnvironmentSource& source);
+
+struct IblSettings {
+    uint32_t cube_size = 0;  // 0: input height / 2
+    IrradianceSettings irradiance;
+    SpecularSettings specular;
+    BrdfLutSettings lut;
+    // What the consumer needs (a scene of pure metals needs no irradiance).
+    bool want_irradiance = true;
+    bool want_specular = true;
+    bool want_lut = true;
+};
+
+// Sizes that follow from the input: the cube's face and the specular levels it allows.
+IblSettings resolved_ibl_settings(const IblSettings& settings, const EnvironmentSource& source);
+
+// The bake's images (`settings` as resolved) against the device's dimension and memory
+// limits (gpu/device_limits.h), so that a cube face, LUT or environment too large for
+// it is refused before anything is created; add_passes checks this too. With
+// `whole_copy`, light extraction's second environment and cube count as well.
+Status check_ibl_fits(const Context& context, const EnvironmentSource& source, const IblSettings& settings,
+                      bool whole_copy = false);
+
+struct IblImages {
+    ImageHandle equirect;    // RGBA32F, the input
+    ImageHandle cube;        // the environment cube with its mips (the skybox samples it)
+    ImageHandle irradiance;  // E/pi cube (invalid when not wanted)
+    ImageHandle specular;    // prefiltered cube, roughness level / (levels - 1)
+    ImageHandle lut;         // split-sum A, B, E_avg
+    BufferHandle sh9;        // sh9 irradiance coefficients, when that method runs
+};
+
+// Light extraction bakes the specular levels below `level` from the whole environment
+// (lobes narrower than the extracted lights see them as they are) and the rest, the
+// irradiance and the skybox's cube from the map without its lights.
+struct SpecularSplit {
+    const EnvironmentSource* whole = nullptr;
+    uint32_t level = 0;
+};
+
+// Owns what the passes use beyond the graph's resources (samplers, the staging buffer
+// of a file's texels), so it must outlive the graph's run.
+class IblBake {
+public:
+    IblBake(Context& context, ProgramCache& programs);
+    ~IblBake();
+    IblBake(const IblBake&) = delete;
+    IblBake& operator=(const IblBake&) = delete;
+
+    // `settings` as returned by resolved_ibl_settings().
+    Result<IblImages> add_passes(RenderGraph& graph, const EnvironmentSource& source, const IblSettings& settings,
+                                 const SpecularSplit& split = {});
+
+    const Sampler& cube_sampler() const { return *cube_sampler_; }
+
+private:
+    Context& context_;
+    ProgramCache& programs_;
+    std::unique_ptr<Sampler> equirect_sampler_, cube_sampler_;
+    std::unique_ptr<Buffer> staging_, whole_staging_;
+};
+
+}  // namespace facet

@@ -1,0 +1,66 @@
+#pragma once
+// Prefiltered specular cube for the split sum (GGX, alpha = roughness^2): one roughness
+// per mip level, level 0 = roughness 0 = the environment itself. Each level is made by
+// a method chosen per level (design.md; bake.json records the roughness of each level).
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <facet/core/result.h>
+#include <facet/graph/render_graph.h>
+
+namespace facet {
+
+class ProgramCache;
+class Sampler;
+
+enum class SpecularMethod {
+    automatic,   // per level: filtered importance sampling for smooth levels, convolve for rough ones
+    importance,  // the thesis: GGX importance sampling with N Hammersley samples from level 0
+    filtered,    // filtered importance sampling (Krivanek and Colbert 2008)
+    convolve,    // deterministic sum over a small source level that resolves the lobe
+    mips,        // the thesis' cheap alternative: the environment's own mip chain
+};
+
+const char* specular_method_name(SpecularMethod method);
+std::optional<SpecularMethod> parse_specular_method(const std::string& name);
+
+struct SpecularSettings {
+    SpecularMethod method = SpecularMethod::automatic;
+    uint32_t levels = 6;               // roughness of level m = m / (levels - 1)
+    uint32_t sample_count = 1024;      // importance / filtered
+    float automatic_convolve_from = 0.3f;  // automatic: convolve at and above this roughness
+    // Model no more than the scene needs: levels that no lookup with roughness >= this
+    // reaches (trilinear reads floor(roughness x (levels - 1)) and the level above) are
+    // not computed; their texels stay undefined.
+    float min_roughness = 0.0f;
+    // Only levels [first_level, end_level) are computed (end 0: to the last), so that two
+    // calls can fill one cube from two sources (light extraction: smooth levels from the
+    // whole environment, rough ones from the map without its lights).
+    uint32_t first_level = 0;
+    uint32_t end_level = 0;
+};
+
+// Roughness of every level (level 0 = 0, last = 1).
+std::vector<float> specular_level_roughness(uint32_t levels);
+// The method a level actually uses.
+SpecularMethod specular_level_method(const SpecularSettings& settings, float roughness);
+// The first level computed: the later of first_level and the first one a lookup with
+// roughness >= min_roughness can read.
+uint32_t first_needed_specular_level(const SpecularSettings& settings);
+// Face size of the source level the convolve method reads for a roughness: texels of
+// about a quarter of the GGX lobe's width, between 8 and 64 (the texel list keeps each
+// block's radiance-weighted direction, so a sun stays where it is).
+uint32_t convolve_source_size(float roughness);
+
+// `environment`: the environment cube with its full mip chain (sampled through
+// `cube_sampler`: linear, mipmapped). `specular`: an RGBA32F cube of the same face size
+// with settings.levels levels. Returns the specular cube's final version.
+// With `equirect` (the input, RGBA32F, at least 16 rows), convolve levels list its texels
+// directly instead of a cube level's (no resampling between input and result).
+Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& programs, const Sampler& cube_sampler,
+                                        ImageHandle environment, ImageHandle specular, const SpecularSettings& settings,
+                                        ImageHandle equirect = {});
+
+}  // namespace facet

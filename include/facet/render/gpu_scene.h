@@ -1,0 +1,77 @@
+#pragma once
+// A Scene on the GPU: one vertex and one index buffer, instance and material buffers,
+// textures with full mip chains (sRGB for colour, linear for data) and their samplers,
+// plus the 1x1 defaults bound where a material has no texture. Uploaded once, outside
+// any render graph; the forward pass reads it.
+#include <array>
+#include <cstdint>
+#include <map>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include <facet/gpu/resources.h>
+#include <facet/scene/scene.h>
+
+namespace facet {
+
+class Context;
+
+enum class TextureSlot { base_color, metallic_roughness, normal, occlusion, emissive, count };
+
+// std430 layouts of shaders/render/forward_interface.glsl.
+struct GpuInstance {
+    glm::mat4 world;
+    glm::mat4 normal_matrix;
+};
+struct GpuMaterial {
+    glm::vec4 base_color;
+    glm::vec4 emissive_f0;
+    glm::vec4 factors;
+    glm::vec4 extra;
+};
+
+struct GpuTexture {
+    VkImageView view = VK_NULL_HANDLE;
+    VkSampler sampler = VK_NULL_HANDLE;
+};
+
+class GpuScene {
+public:
+    GpuScene(Context& context, const Scene& scene);
+    GpuScene(const GpuScene&) = delete;
+    GpuScene& operator=(const GpuScene&) = delete;
+
+    const Scene& scene() const { return scene_; }
+    // New factors for the same materials (textures and alpha modes unchanged), uploaded
+    // now; call between frames.
+    void update_materials(const std::vector<Material>& materials);
+    VkBuffer vertices() const { return vertices_.handle(); }
+    VkBuffer indices() const { return indices_.handle(); }
+    VkBuffer instances() const { return instances_.handle(); }
+    VkBuffer materials() const { return materials_.handle(); }
+    // The material's texture in a slot, or the slot's default (white; flat normal).
+    GpuTexture texture(uint32_t material, TextureSlot slot) const;
+    bool has_texture(uint32_t material, TextureSlot slot) const;
+    // Black 1x1 cube and 2D images for the IBL bindings of a scene without an environment.
+    VkImageView black_cube() const { return black_cube_view_; }
+    VkImageView black_2d() const { return black_2d_view_; }
+    VkSampler default_sampler() const { return default_sampler_.handle(); }
+    uint64_t texture_bytes() const { return texture_bytes_; }
+
+private:
+    Image& texture_image(uint32_t image, bool srgb);
+    Context& context_;
+    const Scene& scene_;
+    Buffer vertices_, indices_, instances_, materials_;
+    std::map<std::pair<uint32_t, bool>, Image> textures_;  // (scene image, sRGB) -> image
+    std::vector<Sampler> samplers_;                         // one per scene sampler
+    Sampler default_sampler_;
+    Image white_srgb_, white_linear_, flat_normal_, black_cube_, black_2d_;
+    VkImageView black_cube_view_ = VK_NULL_HANDLE, black_2d_view_ = VK_NULL_HANDLE;
+    std::vector<std::array<GpuTexture, size_t(TextureSlot::count)>> material_textures_;
+    std::vector<std::array<bool, size_t(TextureSlot::count)>> material_has_;
+    uint64_t texture_bytes_ = 0;
+};
+
+}  // namespace facet

@@ -1,0 +1,66 @@
+#pragma once
+// GLSL -> SPIR-V at run time with the glslang library (Vulkan 1.3 client, SPIR-V 1.5 so
+// that host devices without maintenance4 accept it).
+// #include "x.glsl" resolves against the including file's folder, then shaders/;
+// errors read `file:line: error: message` followed by the offending source line.
+// Results are cached in memory (and optionally on disk) by a hash of the preprocessed
+// source, so an edited include changes the key.
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <facet/core/result.h>
+#include <facet/shader/shader_library.h>
+
+namespace facet {
+
+enum class ShaderStage { vertex, fragment, compute };
+
+struct ShaderDefine {
+    std::string name;
+    std::string value;
+};
+
+struct Spirv {
+    std::vector<uint32_t> words;
+    uint64_t key = 0;  // cache key: preprocessed source + stage + options
+};
+
+struct ShaderCompilerOptions {
+    std::string source_dir;      // empty: FACET_SHADER_DIR, else the embedded sources
+    std::string disk_cache_dir;  // empty: no on-disk cache
+    bool debug_info = false;     // keep debug information in the SPIR-V
+};
+
+class ShaderCompiler {
+public:
+    explicit ShaderCompiler(ShaderCompilerOptions options = {});
+
+    // `name` is a path relative to shaders/, e.g. "ibl/procedural_sky.comp".
+    Result<Spirv> compile(ShaderStage stage, std::string_view name,
+                          std::span<const ShaderDefine> defines = {});
+    // Source given as text; `name` is used in messages and for resolving #include.
+    Result<Spirv> compile_source(ShaderStage stage, std::string_view name, std::string_view text,
+                                 std::span<const ShaderDefine> defines = {});
+
+    struct Stats {
+        uint32_t memory_hits = 0, disk_hits = 0, compiles = 0;
+    };
+    Stats stats() const;
+    const ShaderLibrary& library() const { return library_; }
+
+private:
+    ShaderCompilerOptions options_;
+    ShaderLibrary library_;
+    mutable std::mutex mutex_;
+    std::map<uint64_t, std::vector<uint32_t>> memory_cache_;
+    Stats stats_;
+};
+
+const char* stage_name(ShaderStage stage);
+
+}  // namespace facet
