@@ -1,4 +1,4 @@
-// The shared BRDF include (shaders/brdf.glsl), evaluated on the GPU and checked against
+// The shared BRDF include (shaders/facet/brdf.glsl), evaluated on the GPU and checked against
 // formulas written here independently in double precision, plus the GGX normalisation
 // integral (the projected NDF integrates to 1) computed from the GPU's own values.
 #include <gtest/gtest.h>

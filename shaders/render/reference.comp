@@ -8,7 +8,7 @@
 // Smith/Schlick-GGX with k = r^2/2 for the environment (k = (r+1)^2/8 for lights, or
 // the height-correlated term), kd = (1 - F)(1 - metalness), Lambert. The environment is
 // piecewise constant per texel, as in the brute-force sums of the tests.
-#include "brdf.glsl"
+#include "facet/brdf.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
