@@ -5,11 +5,12 @@
 // shaders call too); this file reads the material and the frame's data. Variants
 // (defines) carry only the features a material uses: HAS_BASE_COLOR_MAP,
 // HAS_METALLIC_ROUGHNESS_MAP, HAS_NORMAL_MAP, HAS_OCCLUSION_MAP, HAS_EMISSIVE_MAP,
-// ALPHA_MASK, ALPHA_BLEND, DOUBLE_SIDED, USE_IBL, HEIGHT_CORRELATED (glTF's Smith term instead of Schlick-GGX), MULTISCATTER (energy
-// compensation), DOMINANT_DIRECTION (bent specular lookup), VIEW (what is written:
-// render/views.glsl).
+// ALPHA_MASK, ALPHA_BLEND, DOUBLE_SIDED, USE_IBL, HEIGHT_CORRELATED (glTF's Smith term
+// instead of Schlick-GGX), MULTISCATTER (energy compensation), DOMINANT_DIRECTION (bent
+// specular lookup), VIEW (what is written: render/views.glsl).
 #include "facet/shading.glsl"
 #include "render/forward_interface.glsl"
+#include "render/packed_light.glsl"
 #include "render/views.glsl"
 
 #ifndef VIEW
@@ -74,28 +75,6 @@ Surface surface_at(MaterialData m) {
     return s;
 }
 
-// The light buffer's packed layout (render/forward_interface.glsl) as the shading's types.
-FacetPunctualLight punctual_light(Light light) {
-    FacetPunctualLight p;
-    p.type = uint(light.direction_type.w);
-    p.position = light.position_range.xyz;
-    p.range_m = light.position_range.w;
-    p.direction = light.direction_type.xyz;
-    p.intensity = light.color_intensity.rgb * light.color_intensity.a;
-    p.cone_scale = light.cone.x;
-    p.cone_offset = light.cone.y;
-    return p;
-}
-
-FacetDiskLight disk_light(Light light) {
-    FacetDiskLight d;
-    d.direction = -normalize(light.direction_type.xyz);
-    d.cos_radius = light.cone.x;
-    d.angular_radius = light.cone.y;
-    d.radiance = light.color_intensity.rgb * light.color_intensity.a;
-    return d;
-}
-
 #ifdef HEIGHT_CORRELATED
 const bool height_correlated = true;
 #else
@@ -129,8 +108,11 @@ void main() {
     vec3 view_l = reflect(-v, n);
     float view_k = k_ibl(s.roughness);
     for (uint i = 0u; i < frame.counts.x; ++i) {
+        Light light = lights[i];
         vec3 l;
-        vec3 incident = facet_punctual_incidence(punctual_light(lights[i]), in_world, l);
+        vec3 incident = facet_punctual_incidence(
+            unpack_punctual_light(light.position_range, light.direction_type, light.color_intensity, light.cone),
+            in_world, l);
         if (i == 0u) {
             view_l = l;
             view_k = k_direct(s.roughness);
@@ -146,7 +128,9 @@ void main() {
     float disk_specular_weight = facet_disk_specular_weight(s.roughness, specular_levels, frame.ibl.z);
     for (uint i = 0u; i < frame.counts.y; ++i) {
         vec3 disk_diffuse, disk_specular;
-        facet_disk_light(s, v, NdotV, disk_light(lights[frame.counts.x + i]), lut, disk_diffuse, disk_specular);
+        Light disk = lights[frame.counts.x + i];
+        facet_disk_light(s, v, NdotV, unpack_disk_light(disk.direction_type, disk.color_intensity, disk.cone), lut,
+                         disk_diffuse, disk_specular);
         diffuse += disk_diffuse * frame.ibl.x * s.occlusion;
         specular += disk_specular * disk_specular_weight * frame.ibl.x * s.occlusion;
     }
