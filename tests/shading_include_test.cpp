@@ -134,8 +134,9 @@ TEST_F(ShadingIncludeTest, ReflectLightIsTheThesisBrdf) {
         const size_t o = correlated ? 6 : 0;
         const double d[3] = {b.diffuse.x, b.diffuse.y, b.diffuse.z}, s[3] = {b.specular.x, b.specular.y, b.specular.z};
         for (int c = 0; c < 3; ++c) {
-            EXPECT_NEAR(v[o + c], 2 * d[c], 1e-5 * std::max(1.0, d[c])) << "diffuse " << c << " correlated " << correlated;
-            EXPECT_NEAR(v[o + 3 + c], 2 * s[c], 1e-5 * std::max(1.0, s[c])) << "specular " << c << " correlated " << correlated;
+            const std::string what = std::to_string(c) + (correlated ? " height-correlated" : " Schlick-GGX");
+            EXPECT_NEAR(v[o + c], 2 * d[c], 1e-5 * std::max(1.0, d[c])) << "diffuse " << what;
+            EXPECT_NEAR(v[o + 3 + c], 2 * s[c], 1e-5 * std::max(1.0, s[c])) << "specular " << what;
         }
     }
     for (int c = 12; c < 15; ++c) EXPECT_EQ(v[c], 0.0f);  // light from below the surface

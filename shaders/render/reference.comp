@@ -7,8 +7,8 @@
 // added in closed form. The BRDF is the forward pass's (facet/shading.glsl's
 // facet_reflect_light): D_GGX, F_Schlick on h.v, Smith/Schlick-GGX with k = r^2/2 for the
 // environment (k = (r+1)^2/8 for lights, or the height-correlated term),
-// kd = (1 - F)(1 - metalness), Lambert. The environment is
-// piecewise constant per texel, as in the brute-force sums of the tests.
+// kd = (1 - F)(1 - metalness), Lambert. The environment is piecewise constant per texel,
+// as in the brute-force sums of the tests.
 #include "facet/shading.glsl"
 #include "ibl/equirect.glsl"
 #include "ibl/sampling.glsl"

@@ -51,7 +51,8 @@ inline std::optional<SpirvStructLayout> spirv_struct_layout(std::span<const uint
                     found[words[at + 1]].member_names[words[at + 2]] = spirv_string(words, at + 3, at + count);
                 if (op == op_member_decorate && found.count(words[at + 1]) && words[at + 3] == decoration_offset)
                     found[words[at + 1]].member_offsets[words[at + 2]] = words[at + 4];
-                if (op == op_decorate && words[at + 2] == decoration_array_stride) strides[words[at + 1]] = words[at + 3];
+                if (op == op_decorate && words[at + 2] == decoration_array_stride)
+                    strides[words[at + 1]] = words[at + 3];
                 if ((op == op_type_array || op == op_type_runtime_array) && found.count(words[at + 2]))
                     found[words[at + 2]].arrays.push_back(words[at + 1]);
             }
