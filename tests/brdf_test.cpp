@@ -1,9 +1,10 @@
-// The shared BRDF include (shaders/brdf.glsl), evaluated on the GPU and checked against
+// The shared BRDF include (shaders/facet/brdf.glsl), evaluated on the GPU and checked against
 // formulas written here independently in double precision, plus the GGX normalisation
 // integral (the projected NDF integrates to 1) computed from the GPU's own values.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <vector>
 
@@ -24,6 +25,9 @@ struct BrdfOutput {
     float D, F, F_rough, G_direct;
     float G_ibl, V_correlated, k_direct, k_ibl;
 };
+// std430 arrays of 8 floats in shaders/test/brdf_eval.comp: no padding on either side.
+static_assert(sizeof(BrdfInput) == 32 && offsetof(BrdfInput, roughness) == 16);
+static_assert(sizeof(BrdfOutput) == 32 && offsetof(BrdfOutput, G_ibl) == 16);
 
 constexpr double pi = 3.14159265358979323846;
 

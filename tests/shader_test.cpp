@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include <unistd.h>
 
@@ -59,6 +60,20 @@ TEST(ShaderCompiler, CompilesEveryEmbeddedEntryShader) {
         auto spirv = compiler.compile(ShaderStage::compute, name);
         EXPECT_TRUE(spirv) << name << ": " << (spirv ? "" : spirv.error().message);
     }
+}
+
+// The shading include a host's shaders call and the constants header it reads (embedded
+// from include/facet/core, byte for byte) are in the library under facet/.
+TEST(ShaderCompiler, EmbedsTheShadingIncludeAndTheSharedConstants) {
+    ShaderLibrary library;
+    auto shading = library.load("facet/shading.glsl");
+    ASSERT_TRUE(shading);
+    EXPECT_NE(shading->find("facet_environment_light"), std::string::npos);
+    auto constants = library.load("facet/shared_constants.h");
+    ASSERT_TRUE(constants);
+    std::ifstream in(std::string(FACET_SOURCE_DIR) + "/include/facet/core/shared_constants.h", std::ios::binary);
+    const std::string on_disk((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(*constants, on_disk);
 }
 
 TEST(ShaderCompiler, DefinesChangeTheOutputAndTheKey) {

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include <facet/core/shared_constants.h>
+
 namespace facet {
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
-
-double luminance(const float* t) { return 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2]; }
+double luminance(const float* t) { return facet::luminance(t[0], t[1], t[2]); }
 
 glm::dvec3 texel_direction(uint32_t x, uint32_t y, uint32_t w, uint32_t h) {
     const double phi = ((x + 0.5) / w - 0.5) * 2 * pi, lat = (0.5 - (y + 0.5) / h) * pi;
@@ -114,7 +114,7 @@ LightExtraction extract_lights(std::span<const float> rgba, uint32_t w, uint32_t
             const double omega = texel_solid_angle(i / w, w, h);
             const glm::dvec3 excess = glm::max(glm::dvec3(rgba[i * 4], rgba[i * 4 + 1], rgba[i * 4 + 2]) - fill, 0.0);
             power += excess * omega;
-            centroid += (0.2126 * excess.x + 0.7152 * excess.y + 0.0722 * excess.z) * omega *
+            centroid += facet::luminance(excess.x, excess.y, excess.z) * omega *
                         texel_direction(i % w, i / w, w, h);
             for (int c = 0; c < 3; ++c) out.residual[i * 4 + size_t(c)] = float(fill[c]);
         }

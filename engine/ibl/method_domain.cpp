@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include <facet/core/shared_constants.h>
 #include <facet/ibl/light_extraction.h>
 
 namespace facet {
@@ -17,7 +18,7 @@ EnvironmentStats environment_stats(std::span<const float> rgba, uint32_t width, 
     std::vector<double> lum(n);
     double peak = 0;
     for (size_t i = 0; i < n; ++i) {
-        lum[i] = std::max(0.0, 0.2126 * rgba[i * 4] + 0.7152 * rgba[i * 4 + 1] + 0.0722 * rgba[i * 4 + 2]);
+        lum[i] = std::max(0.0, luminance(rgba[i * 4], rgba[i * 4 + 1], rgba[i * 4 + 2]));
         peak = std::max(peak, lum[i]);
     }
     std::nth_element(lum.begin(), lum.begin() + long(n / 2), lum.end());

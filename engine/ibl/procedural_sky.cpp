@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include <facet/core/hash.h>
+#include <facet/core/shared_constants.h>
 #include <facet/graph/graph_run.h>
 #include <facet/shader/program_cache.h>
 
@@ -29,7 +30,7 @@ ProceduralSky ProceduralSky::white() {
 }
 
 std::array<float, 3> ProceduralSky::sun_direction() const {
-    const double to_rad = 3.14159265358979323846 / 180.0;
+    const double to_rad = pi / 180.0;
     const double el = sun_elevation_deg * to_rad, az = sun_azimuth_deg * to_rad;
     return {float(std::cos(el) * std::cos(az)), float(std::sin(el)), float(std::cos(el) * std::sin(az))};
 }
@@ -51,7 +52,7 @@ Result<ImageHandle> add_procedural_sky_pass(RenderGraph& graph, ProgramCache& pr
     auto pipeline = programs.compute("ibl/procedural_sky.comp", bindings, sizeof(SkyParams));
     if (!pipeline) return pipeline.error();
     const auto dir = sky.sun_direction();
-    const double to_rad = 3.14159265358979323846 / 180.0;
+    const double to_rad = pi / 180.0;
     SkyParams params{{dir[0], dir[1], dir[2], float(std::cos(sky.sun_angular_radius_deg * to_rad))},
                      {sky.sun_radiance[0], sky.sun_radiance[1], sky.sun_radiance[2], sky.sun_glow},
                      {sky.zenith_radiance[0], sky.zenith_radiance[1], sky.zenith_radiance[2], 0},

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <facet/core/shared_constants.h>
 #include <facet/gpu/resources.h>
 #include <facet/graph/graph_run.h>
 #include "ibl/cube_texel_list.h"
@@ -31,7 +32,7 @@ SpecularMethod specular_level_method(const SpecularSettings& s, float roughness)
 uint32_t convolve_source_size(float roughness) {
     // The lobe's full width at half maximum in l is about 2.6 alpha radians.
     const double alpha = std::max(double(roughness) * roughness, 1e-4);
-    const double wanted = 4.0 * (3.14159265358979323846 / 2) / (2.6 * alpha);
+    const double wanted = 4.0 * (pi / 2) / (2.6 * alpha);
     uint32_t size = 8;
     while (size < 64 && size < wanted) size *= 2;
     return size;

@@ -2,11 +2,12 @@
 
 #include <cmath>
 
+#include <facet/core/shared_constants.h>
+
 namespace facet {
 
 EnvironmentDistribution build_environment_distribution(std::span<const float> rgba, uint32_t width,
                                                        uint32_t height) {
-    constexpr double pi = 3.14159265358979323846;
     EnvironmentDistribution d;
     d.width = width;
     d.height = height;
@@ -18,7 +19,7 @@ EnvironmentDistribution build_environment_distribution(std::span<const float> rg
         const double solid_angle = 2 * pi / W * (std::sin(lat_top) - std::sin(lat_bottom));
         for (size_t x = 0; x < W; ++x) {
             const float* t = &rgba[(y * W + x) * 4];
-            const double luminance = 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2];
+            const double luminance = facet::luminance(t[0], t[1], t[2]);
             weight[y * W + x] = std::max(luminance, 0.0) * solid_angle;
             total += weight[y * W + x];
         }

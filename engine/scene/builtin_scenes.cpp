@@ -5,11 +5,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <facet/core/hash.h>
+#include <facet/core/shared_constants.h>
 
 namespace facet {
 namespace {
-
-constexpr float pi = 3.14159265358979323846f;
 
 Material sphere_material(const std::string& name, glm::vec3 albedo, float metallic, float roughness) {
     Material m;
@@ -52,9 +51,9 @@ uint32_t add_sphere_primitive(Scene& scene, uint32_t material, uint32_t segments
     // Rows run from the north pole (v = 0) to the south pole; the seam column is doubled
     // so that u runs 0..1 without wrapping.
     for (uint32_t r = 0; r <= rings; ++r) {
-        const float theta = pi * float(r) / float(rings);
+        const float theta = float(pi) * float(r) / float(rings);
         for (uint32_t s = 0; s <= segments; ++s) {
-            const float phi = 2.0f * pi * float(s) / float(segments);
+            const float phi = 2.0f * float(pi) * float(s) / float(segments);
             Vertex v;
             v.normal = glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta), -std::sin(theta) * std::sin(phi));
             v.position = v.normal;

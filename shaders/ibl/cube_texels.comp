@@ -4,6 +4,7 @@
 // mean direction, and the angular radius of a cap with the same spread. A sun inside the
 // block is then placed where it is, not at the block's centre, and keeps a point-like
 // spread, so the convolution over a few thousand entries matches one over every texel.
+#include "facet/shared_constants.h"
 #include "ibl/cube.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
@@ -32,8 +33,8 @@ void main() {
             // Weighted by luminance, plus a trace of solid angle so a black block is centred.
             // Each child counts as a cap of its own solid angle, whose mean resultant
             // length is (1 + cos s) / 2, so a one-texel block keeps its own extent.
-            float w = (dot(radiance, vec3(0.2126, 0.7152, 0.0722)) + 1e-6) * solid_angle;
-            float child_cos = 1.0 - solid_angle / (2.0 * 3.14159265358979323846);
+            float w = (facet_luminance(radiance) + 1e-6) * solid_angle;
+            float child_cos = 1.0 - solid_angle / (2.0 * facet_pi);
             weighted_direction += w * 0.5 * (1.0 + child_cos) * d;
             weight += w;
         }

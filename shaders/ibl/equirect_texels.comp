@@ -23,16 +23,13 @@ void main() {
     float weight = 0.0, solid_angle_sum = 0.0;
     uvec2 end = min((id + 1u) * params.block, uvec2(size));
     for (uint y = id.y * params.block; y < end.y; ++y) {
-        // Solid angle of a texel of row y: (2 pi / W) (sin(theta_top) - sin(theta_bottom)).
-        float theta0 = FACET_PI * (0.5 - float(y) / float(size.y));
-        float theta1 = FACET_PI * (0.5 - float(y + 1u) / float(size.y));
-        float solid_angle = (2.0 * FACET_PI / float(size.x)) * (sin(theta0) - sin(theta1));
-        float child_cos = 1.0 - solid_angle / (2.0 * FACET_PI);
+        float solid_angle = equirect_texel_solid_angle(y, uvec2(size));
+        float child_cos = 1.0 - solid_angle / (2.0 * facet_pi);
         for (uint x = id.x * params.block; x < end.x; ++x) {
             vec3 d = equirect_direction((vec2(x, y) + 0.5) / vec2(size));
             vec3 radiance = imageLoad(equirect, ivec2(x, y)).rgb;
             radiance_solid_angle += radiance * solid_angle;
-            float w = (dot(radiance, vec3(0.2126, 0.7152, 0.0722)) + 1e-6) * solid_angle;
+            float w = (facet_luminance(radiance) + 1e-6) * solid_angle;
             weighted_direction += w * 0.5 * (1.0 + child_cos) * d;
             weight += w;
             solid_angle_sum += solid_angle;

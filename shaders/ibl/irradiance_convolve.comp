@@ -8,6 +8,7 @@
 // and de Rousiers 2014, "Moving Frostbite to PBR", sphere lights).
 // `blur` (the thesis' cheap alternative): a normalised spherical Gaussian of width sigma
 // instead of the cosine; right for a uniform sky, a blur of it otherwise.
+#include "facet/shared_constants.h"
 #include "ibl/cube.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
@@ -20,8 +21,6 @@ layout(push_constant) uniform Params {
     float sigma;       // Gaussian width in radians (blur)
 } params;
 
-const float PI_C = 3.14159265358979323846;
-
 // Integral of max(0, n . w) over a cap of angular radius sigma whose axis makes angle
 // theta with n, divided by pi sin^2(sigma) (so that it is cos(theta) when fully visible).
 float clipped_cap_cosine(float cos_theta, float sin2_sigma) {
@@ -31,7 +30,7 @@ float clipped_cap_cosine(float cos_theta, float sin2_sigma) {
     float y = clamp(-x * cos_theta / max(sin_theta, 1e-7), -1.0, 1.0);
     float sin_theta_sqrt_y = sin_theta * sqrt(1.0 - y * y);
     float e = (cos_theta * acos(y) - x * sin_theta_sqrt_y) * sin2_sigma + atan(sin_theta_sqrt_y, x);
-    return max(e, 0.0) / (PI_C * sin2_sigma);
+    return max(e, 0.0) / (facet_pi * sin2_sigma);
 }
 
 void main() {

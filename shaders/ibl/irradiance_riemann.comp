@@ -3,6 +3,7 @@
 // theta in steps of `step` radians, each sample L(w) cos(theta) sin(theta) from the
 // cube's level 0. Midpoints of the steps, normalised by the sum of cos sin weights so
 // that a uniform sky gives exactly its radiance (the sum of weights tends to pi / step^2).
+#include "facet/shared_constants.h"
 #include "ibl/cube.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
@@ -13,8 +14,6 @@ layout(push_constant) uniform Params {
     float step;
 } params;
 
-const float PI_R = 3.14159265358979323846;
-
 void main() {
     uint n = uint(imageSize(irradiance).x);
     uvec3 id = gl_GlobalInvocationID;
@@ -23,9 +22,9 @@ void main() {
     vec3 up = abs(normal.y) < 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
     vec3 right = normalize(cross(up, normal));
     up = cross(normal, right);
-    int phi_steps = max(1, int(round(2.0 * PI_R / params.step)));
-    int theta_steps = max(1, int(round(0.5 * PI_R / params.step)));
-    float dphi = 2.0 * PI_R / float(phi_steps), dtheta = 0.5 * PI_R / float(theta_steps);
+    int phi_steps = max(1, int(round(2.0 * facet_pi / params.step)));
+    int theta_steps = max(1, int(round(0.5 * facet_pi / params.step)));
+    float dphi = 2.0 * facet_pi / float(phi_steps), dtheta = 0.5 * facet_pi / float(theta_steps);
     vec3 sum = vec3(0.0);
     float weight_sum = 0.0;
     for (int p = 0; p < phi_steps; ++p) {

@@ -2,7 +2,7 @@
 #define FACET_SAMPLING_GLSL
 // Low-discrepancy sequences and GGX importance sampling (the thesis' "Specular IBL"
 // chapter; Karis 2013; Walter et al. 2007, eq. 35-36).
-#include "brdf.glsl"
+#include "facet/brdf.glsl"
 
 // Van der Corput radical inverse in base 2 (bit reversal).
 float radical_inverse_vdc(uint bits) {

@@ -7,8 +7,6 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(std430, binding = 0) readonly buffer Coefficients { vec4 coefficients[]; };
 layout(binding = 1, rgba32f) uniform writeonly image2DArray irradiance;
 
-const float BAND_FACTOR[3] = float[](3.14159265, 2.09439510, 0.78539816);
-
 void main() {
     uint n = uint(imageSize(irradiance).x);
     uvec3 id = gl_GlobalInvocationID;
@@ -20,11 +18,10 @@ void main() {
     vec3 e = vec3(0.0);
     for (int k = 0; k < 9; ++k) {
         int l = sh9_band(k);
-        float w = h > 0.0 ? 0.5 * (1.0 + cos(3.14159265 * float(l) / (2.0 * h))) : 1.0;
-        e += BAND_FACTOR[l] * w * coefficients[k].rgb * y[k];
+        e += SH9_BAND_FACTOR[l] * sh9_window(l, h) * coefficients[k].rgb * y[k];
     }
     // Windowed, the minimum is >= 0 on the reduce pass's test directions; between them a
     // trace below 0 may remain, and unwindowed the ringing is the user's choice: either
     // way radiance is never stored negative.
-    imageStore(irradiance, ivec3(id), vec4(max(e / 3.14159265, vec3(0.0)), 1.0));
+    imageStore(irradiance, ivec3(id), vec4(max(e / facet_pi, vec3(0.0)), 1.0));
 }

@@ -17,8 +17,6 @@ layout(push_constant) uniform Params {
     uint windowing;
 } params;
 
-const float BAND_FACTOR[3] = float[](3.14159265, 2.09439510, 0.78539816);
-
 float min_irradiance(vec3 L[9], float h) {
     float lowest = 1e30;
     for (uint face = 0u; face < 6u; ++face)
@@ -30,8 +28,7 @@ float min_irradiance(vec3 L[9], float h) {
                 vec3 e = vec3(0.0);
                 for (int k = 0; k < 9; ++k) {
                     int l = sh9_band(k);
-                    float w = h > 0.0 ? 0.5 * (1.0 + cos(3.14159265 * float(l) / (2.0 * h))) : 1.0;
-                    e += BAND_FACTOR[l] * w * L[k] * y[k];
+                    e += SH9_BAND_FACTOR[l] * sh9_window(l, h) * L[k] * y[k];
                 }
                 lowest = min(lowest, min(e.r, min(e.g, e.b)));
             }

@@ -5,7 +5,7 @@
 // Here it is a deterministic sum over the entries of a texel list (cube_texels.comp):
 // no noise, no fireflies from a sun, exact for a uniform sky. Used for rough levels,
 // where a small source level resolves the lobe.
-#include "brdf.glsl"
+#include "facet/brdf.glsl"
 #include "ibl/cube.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;

@@ -4,11 +4,15 @@
 // takes one BRDF sample (GGX for the specular lobe, cosine for the diffuse one) and one
 // environment sample (texels in proportion to luminance x solid angle) per pixel and
 // combines them with the balance heuristic (Veach and Guibas 1995); punctual lights are
-// added in closed form. The BRDF is the forward pass's: D_GGX, F_Schlick on h.v,
-// Smith/Schlick-GGX with k = r^2/2 for the environment (k = (r+1)^2/8 for lights, or
-// the height-correlated term), kd = (1 - F)(1 - metalness), Lambert. The environment is
-// piecewise constant per texel, as in the brute-force sums of the tests.
-#include "brdf.glsl"
+// added in closed form. The BRDF is the forward pass's (facet/shading.glsl's
+// facet_reflect_light): D_GGX, F_Schlick on h.v, Smith/Schlick-GGX with k = r^2/2 for the
+// environment (k = (r+1)^2/8 for lights, or the height-correlated term),
+// kd = (1 - F)(1 - metalness), Lambert. The environment is piecewise constant per texel,
+// as in the brute-force sums of the tests.
+#include "facet/shading.glsl"
+#include "ibl/equirect.glsl"
+#include "ibl/sampling.glsl"
+#include "render/packed_light.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -52,29 +56,7 @@ float random(inout uint state) {
     return float(state >> 8) * (1.0 / 16777216.0);
 }
 
-vec3 texel_direction(uint x, uint y, float jx, float jy) {
-    float W = float(params.env.x), H = float(params.env.y);
-    // Uniform in solid angle inside the texel: linear in longitude and in sin(latitude).
-    float lat_top = (0.5 - float(y) / H) * PI, lat_bottom = (0.5 - float(y + 1u) / H) * PI;
-    float sin_lat = mix(sin(lat_bottom), sin(lat_top), jy);
-    float cos_lat = sqrt(max(0.0, 1.0 - sin_lat * sin_lat));
-    float phi = ((float(x) + jx) / W - 0.5) * 2.0 * PI;
-    return vec3(cos_lat * cos(phi), sin_lat, cos_lat * sin(phi));
-}
-
-float texel_solid_angle(uint y) {
-    float W = float(params.env.x), H = float(params.env.y);
-    float lat_top = (0.5 - float(y) / H) * PI, lat_bottom = (0.5 - float(y + 1u) / H) * PI;
-    return 2.0 * PI / W * (sin(lat_top) - sin(lat_bottom));
-}
-
-uvec2 texel_of(vec3 d) {
-    float u = atan(d.z, d.x) / (2.0 * PI) + 0.5;
-    float v_image = 0.5 - asin(clamp(d.y, -1.0, 1.0)) / PI;
-    uint x = min(uint(u * float(params.env.x)), params.env.x - 1u);
-    uint y = min(uint(v_image * float(params.env.y)), params.env.y - 1u);
-    return uvec2(x, y);
-}
+uvec2 env_size() { return params.env.xy; }
 
 // Smallest index i of cdf[first .. first + count) with cdf[i] > u.
 uint search(uint first, uint count, float u) {
@@ -88,39 +70,38 @@ uint search(uint first, uint count, float u) {
 }
 
 float env_pdf(vec3 d) {
-    uvec2 t = texel_of(d);
+    uvec2 t = equirect_texel(d, env_size());
     uint W = params.env.x, H = params.env.y;
-    return distribution[H + H * W + t.y * W + t.x] / texel_solid_angle(t.y);
+    return distribution[H + H * W + t.y * W + t.x] / equirect_texel_solid_angle(t.y, env_size());
 }
 
 vec3 env_radiance(vec3 d) {
-    uvec2 t = texel_of(d);
+    uvec2 t = equirect_texel(d, env_size());
     return radiance[t.y * params.env.x + t.x].rgb * params.scale.x;
 }
 
 struct Surface {
-    vec3 n, v, albedo, F0;
-    float metallic, roughness, weight, p_specular;
+    FacetSurface shading;
+    vec3 v;
+    float NdotV;
+    float p_specular;  // probability of sampling the specular lobe
 };
 
-vec3 brdf(Surface s, vec3 l, float k) {
-    float NdotL = dot(s.n, l), NdotV = max(dot(s.n, s.v), 0.0);
-    if (NdotL <= 0.0) return vec3(0.0);
-    vec3 h = normalize(s.v + l);
-    vec3 F = s.weight * F_Schlick(clamp(dot(h, s.v), 0.0, 1.0), s.F0);
-    float D = D_GGX(clamp(dot(s.n, h), 0.0, 1.0), s.roughness);
-    float G = G_Smith(NdotV, NdotL, k);
-    vec3 kd = (1.0 - F) * (1.0 - s.metallic);
-    return kd * s.albedo / PI + D * F * G / max(4.0 * NdotL * NdotV, 1e-8);
+// BRDF x cos x radiance arriving along l (facet/shading.glsl's composition).
+vec3 reflected(Surface s, vec3 l, vec3 radiance, float k, bool height_correlated) {
+    vec3 diffuse, specular;
+    facet_reflect_light(s.shading, s.v, s.NdotV, l, radiance, k, height_correlated, diffuse, specular);
+    return diffuse + specular;
 }
 
 // Density of the BRDF sampling strategy over solid angle.
 float brdf_pdf(Surface s, vec3 l) {
-    float NdotL = dot(s.n, l);
+    vec3 n = s.shading.n;
+    float NdotL = dot(n, l);
     if (NdotL <= 0.0) return 0.0;
     vec3 h = normalize(s.v + l);
-    float NdotH = clamp(dot(s.n, h), 0.0, 1.0);
-    float specular = D_GGX(NdotH, s.roughness) * NdotH / max(4.0 * dot(h, s.v), 1e-8);
+    float NdotH = clamp(dot(n, h), 0.0, 1.0);
+    float specular = D_GGX(NdotH, s.shading.roughness) * NdotH / max(4.0 * dot(h, s.v), 1e-8);
     return s.p_specular * specular + (1.0 - s.p_specular) * NdotL / PI;
 }
 
@@ -136,66 +117,37 @@ float kronecker(uint i, uint dim, float shift) {
 }
 
 vec3 sample_brdf(Surface s, vec3 u) {
-    vec3 up = abs(s.n.y) < 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
-    vec3 t = normalize(cross(up, s.n)), b = cross(s.n, t);
+    vec3 n = s.shading.n;
+    vec3 up = abs(n.y) < 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
+    vec3 t = normalize(cross(up, n)), b = cross(n, t);
     float u1 = u.x, u2 = u.y;
     if (u.z < s.p_specular) {
-        float alpha = max(s.roughness * s.roughness, MIN_ALPHA);
-        float cos_h = sqrt((1.0 - u1) / (1.0 + (alpha * alpha - 1.0) * u1));
-        float sin_h = sqrt(max(0.0, 1.0 - cos_h * cos_h));
-        vec3 h = t * (sin_h * cos(2.0 * PI * u2)) + b * (sin_h * sin(2.0 * PI * u2)) + s.n * cos_h;
+        vec3 h = mat3(t, b, n) * importance_sample_ggx_tangent(vec2(u1, u2), s.shading.roughness);
         return reflect(-s.v, h);
     }
+    // Cosine-weighted hemisphere.
     float r = sqrt(u1);
-    return t * (r * cos(2.0 * PI * u2)) + b * (r * sin(2.0 * PI * u2)) + s.n * sqrt(max(0.0, 1.0 - u1));
+    return t * (r * cos(2.0 * PI * u2)) + b * (r * sin(2.0 * PI * u2)) + n * sqrt(max(0.0, 1.0 - u1));
 }
 
 vec3 sample_environment(vec4 u, out float pdf) {
     uint W = params.env.x, H = params.env.y;
     uint y = search(0u, H, u.x);
     uint x = search(H + y * W, W, u.y);
-    vec3 d = texel_direction(x, y, u.z, u.w);
-    pdf = distribution[H + H * W + y * W + x] / texel_solid_angle(y);
+    vec3 d = equirect_texel_direction(uvec2(x, y), u.zw, env_size());
+    pdf = distribution[H + H * W + y * W + x] / equirect_texel_solid_angle(y, env_size());
     return d;
 }
 
 vec3 punctual(Surface s, vec3 p) {
     vec3 sum = vec3(0.0);
+    bool height_correlated = (params.env.w & 1u) != 0u;
     for (uint i = 0u; i < params.env.z; ++i) {
         Light light = lights[i];
-        uint type = uint(light.direction_type.w);
-        vec3 incident = light.color_intensity.rgb * light.color_intensity.a;
         vec3 l;
-        if (type == 0u) {
-            l = -normalize(light.direction_type.xyz);
-        } else {
-            vec3 to_light = light.position_range.xyz - p;
-            float d2 = max(dot(to_light, to_light), 1e-8);
-            l = to_light * inversesqrt(d2);
-            float attenuation = 1.0 / d2;
-            float range = light.position_range.w;
-            if (range > 0.0) {
-                float ratio = d2 / (range * range);
-                attenuation *= clamp(1.0 - ratio * ratio, 0.0, 1.0);
-            }
-            if (type == 2u) {
-                float cone = clamp(dot(normalize(light.direction_type.xyz), -l) * light.cone.x + light.cone.y, 0.0, 1.0);
-                attenuation *= cone * cone;
-            }
-            incident *= attenuation;
-        }
-        float NdotL = dot(s.n, l);
-        if (NdotL <= 0.0) continue;
-        if ((params.env.w & 1u) != 0u) {
-            vec3 h = normalize(s.v + l);
-            float NdotV = max(dot(s.n, s.v), 0.0);
-            vec3 F = s.weight * F_Schlick(clamp(dot(h, s.v), 0.0, 1.0), s.F0);
-            float DV = D_GGX(clamp(dot(s.n, h), 0.0, 1.0), s.roughness) *
-                       V_SmithGGXCorrelated(NdotV, NdotL, max(s.roughness * s.roughness, MIN_ALPHA));
-            sum += ((1.0 - F) * (1.0 - s.metallic) * s.albedo / PI + DV * F) * incident * NdotL;
-        } else {
-            sum += brdf(s, l, k_direct(s.roughness)) * incident * NdotL;
-        }
+        vec3 incident = facet_punctual_incidence(
+            unpack_punctual_light(light.position_range, light.direction_type, light.color_intensity, light.cone), p, l);
+        sum += reflected(s, l, incident, k_direct(s.shading.roughness), height_correlated);
     }
     return sum;
 }
@@ -215,16 +167,20 @@ void main() {
         return;
     }
     Surface s;
-    s.n = normalize(normal.xyz);
-    s.v = normalize(params.camera_position.xyz - position.xyz);
-    s.albedo = texelFetch(basecolor_view, pixel, 0).rgb;
-    s.metallic = texelFetch(metallic_view, pixel, 0).r;
-    s.roughness = texelFetch(roughness_view, pixel, 0).r;
+    // The views hold the forward pass's surface terms (F0 and the specular weight
+    // included), so the shading surface is read back, not derived again.
+    s.shading.n = normalize(normal.xyz);
+    s.shading.albedo = texelFetch(basecolor_view, pixel, 0).rgb;
+    s.shading.metallic = texelFetch(metallic_view, pixel, 0).r;
+    s.shading.roughness = texelFetch(roughness_view, pixel, 0).r;
     vec4 f0 = texelFetch(f0_view, pixel, 0);
-    s.F0 = f0.rgb;
-    s.weight = f0.a;
-    s.p_specular = s.weight <= 0.0 ? 0.0 : mix(0.5, 1.0, s.metallic);
-    float k = k_ibl(s.roughness);
+    s.shading.F0 = f0.rgb;
+    s.shading.specular_weight = f0.a;
+    s.shading.occlusion = 1.0;
+    s.v = normalize(params.camera_position.xyz - position.xyz);
+    s.NdotV = clamp(dot(s.shading.n, s.v), 0.0, 1.0);
+    s.p_specular = f0.a <= 0.0 ? 0.0 : mix(0.5, 1.0, s.shading.metallic);
+    float k = k_ibl(s.shading.roughness);
     vec3 p = position.xyz;
 
     uint rng = hash(uint(pixel.x) * 1973u + uint(pixel.y) * 9277u + params.batch.y * 26699u);
@@ -237,15 +193,15 @@ void main() {
         float pb = brdf_pdf(s, l);
         if (pb > 0.0) {
             float pe = env_pdf(l);
-            batch_sum += brdf(s, l, k) * env_radiance(l) * dot(s.n, l) / (pb + pe);
+            batch_sum += reflected(s, l, env_radiance(l), k, false) / (pb + pe);
         }
         // Environment sample.
         float pe;
         l = sample_environment(vec4(kronecker(i, 3u, shift[3]), kronecker(i, 4u, shift[4]), kronecker(i, 5u, shift[5]),
                                     kronecker(i, 6u, shift[6])), pe);
-        if (pe > 0.0 && dot(s.n, l) > 0.0) {
+        if (pe > 0.0 && dot(s.shading.n, l) > 0.0) {
             float pb2 = brdf_pdf(s, l);
-            batch_sum += brdf(s, l, k) * env_radiance(l) * dot(s.n, l) / (pb2 + pe);
+            batch_sum += reflected(s, l, env_radiance(l), k, false) / (pb2 + pe);
         }
     }
     vec3 batch_mean = count > 0u ? batch_sum / float(count) : vec3(0.0);
@@ -253,7 +209,7 @@ void main() {
     vec4 acc = imageLoad(accumulation, pixel);
     imageStore(accumulation, pixel, vec4(acc.rgb + batch_sum + exact * float(count), acc.a + float(count)));
     // Batch means give the noise estimate: their spread over batches of equal size.
-    float y = dot(batch_mean + exact, vec3(0.2126, 0.7152, 0.0722));
+    float y = facet_luminance(batch_mean + exact);
     vec4 m = imageLoad(moments, pixel);
     imageStore(moments, pixel, vec4(m.x + y, m.y + y * y, m.z + 1.0, 0.0));
 }

@@ -1,7 +1,7 @@
 #version 460
 // Test kernel: evaluates the shared BRDF terms for inputs from a buffer, so the tests can
 // check them against an independent CPU reference.
-#include "brdf.glsl"
+#include "facet/brdf.glsl"
 
 layout(local_size_x = 64) in;
 

@@ -4,8 +4,9 @@
 // bakes includes this file. Conventions: alpha = roughness^2 (Burley 2012); k of
 // Schlick-GGX is k_direct = (r+1)^2/8 for punctual lights and k_ibl = r^2/2 for
 // image-based lighting (Karis 2013), r = roughness.
+#include "shared_constants.h"
 
-const float PI = 3.14159265358979323846;
+const float PI = facet_pi;
 
 // Smallest alpha used in D: alpha = 0 would make D a Dirac delta (infinite at NdotH = 1).
 const float MIN_ALPHA = 1e-4;

@@ -1,0 +1,217 @@
+// shaders/facet/shading.glsl as a host's own shader uses it: a compute shader of the
+// test's own (its own bindings) includes "facet/shading.glsl" and calls it; the values are
+// checked against formulas written here independently in double precision (the
+// KHR_lights_punctual falloff, the thesis' BRDF, the bake's lod rule). The environment
+// composition is covered by forward_render_test (white furnace, energy, both Smith terms).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "support/compute_probe.h"
+#include "support/gpu_test.h"
+
+namespace facet {
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+struct V3 {
+    double x, y, z;
+};
+V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+V3 operator*(V3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
+double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+V3 normalize(V3 a) { return a * (1.0 / std::sqrt(dot(a, a))); }
+
+std::string probe(const std::string& body) {
+    return "#version 460\n#include \"facet/shading.glsl\"\nlayout(local_size_x = 1) in;\n"
+           "layout(std430, binding = 0) writeonly buffer Out { float values[]; };\n"
+           "void put(uint i, vec3 v) { values[i] = v.x; values[i + 1u] = v.y; values[i + 2u] = v.z; }\n"
+           "void main() {\n" +
+           body + "}\n";
+}
+
+class ShadingIncludeTest : public test::GpuTest {};
+
+// KHR_lights_punctual: I / d^2 windowed by clamp(1 - (d / range)^4, 0, 1); spot cone
+// clamp(cos * scale + offset, 0, 1)^2 with scale = 1 / (cos inner - cos outer).
+TEST_F(ShadingIncludeTest, PunctualFalloffFollowsKhrLightsPunctual) {
+    const double inner = 10 * pi / 180, outer = 30 * pi / 180, at = 20 * pi / 180;
+    const double scale = 1 / (std::cos(inner) - std::cos(outer)), offset = -std::cos(outer) * scale;
+    const std::string body = R"(
+    vec3 l;
+    FacetPunctualLight light;
+    light.type = FACET_LIGHT_POINT;
+    light.position = vec3(0.0, 0.0, 2.0);
+    light.range_m = 3.0;
+    light.direction = vec3(0.0);
+    light.intensity = vec3(10.0, 20.0, 30.0);
+    put(0u, facet_punctual_incidence(light, vec3(0.0), l));
+    put(3u, l);
+    light.range_m = 0.0;
+    put(6u, facet_punctual_incidence(light, vec3(0.0), l));
+    light.type = FACET_LIGHT_SPOT;
+    light.position = vec3(0.0, 2.0, 0.0);
+    light.direction = vec3(0.0, -3.0, 0.0);  // not unit: normalised by the function
+    light.intensity = vec3(1.0);
+    light.cone_scale = )" + std::to_string(scale) + R"(;
+    light.cone_offset = )" + std::to_string(offset) + R"(;
+    put(9u, facet_punctual_incidence(light, vec3(2.0 * tan()" + std::to_string(at) + R"(), 0.0, 0.0), l));
+    put(12u, facet_punctual_incidence(light, vec3(3.0, 0.0, 0.0), l));
+    light.type = FACET_LIGHT_DIRECTIONAL;
+    light.direction = vec3(0.0, -2.0, 0.0);
+    light.intensity = vec3(5.0);
+    put(15u, facet_punctual_incidence(light, vec3(7.0), l));
+    put(18u, l);
+)";
+    auto v = test::run_compute_probe(ctx(), "punctual_probe.comp", probe(body), 21);
+    ASSERT_EQ(v.size(), 21u);
+    const double window = 1 - std::pow(2.0 / 3.0, 4);
+    EXPECT_NEAR(v[0], 10.0 / 4 * window, 1e-5);
+    EXPECT_NEAR(v[2], 30.0 / 4 * window, 1e-5);
+    EXPECT_NEAR(v[5], 1.0, 1e-6);  // l points at the light
+    EXPECT_NEAR(v[6], 10.0 / 4, 1e-5);
+    const double d2 = 4 + std::pow(2 * std::tan(at), 2);
+    const double cone = std::clamp(std::cos(at) * scale + offset, 0.0, 1.0);
+    EXPECT_NEAR(v[9], cone * cone / d2, 1e-5);
+    EXPECT_EQ(v[12], 0.0f);  // 56 degrees off the axis: outside the outer cone
+    EXPECT_NEAR(v[15], 5.0, 1e-6);
+    EXPECT_NEAR(v[19], 1.0, 1e-6);  // towards the light: against its direction
+}
+
+struct Brdf {
+    V3 diffuse, specular;
+};
+
+// The thesis' BRDF times n.l for unit incident radiance, written from the equations.
+Brdf thesis_brdf(V3 n, V3 v, V3 l, V3 albedo, double metallic, double roughness, bool height_correlated, double k) {
+    const V3 h = normalize(v + l);
+    const double nl = dot(n, l), nv = dot(n, v), nh = dot(n, h), vh = dot(v, h);
+    const double alpha = roughness * roughness, a2 = alpha * alpha;
+    const double t = nh * nh * (a2 - 1) + 1;
+    const double D = a2 / (pi * t * t);
+    double DG;  // D G / (4 n.l n.v)
+    if (height_correlated) {
+        DG = D * 0.5 / (nl * std::sqrt(nv * nv * (1 - a2) + a2) + nv * std::sqrt(nl * nl * (1 - a2) + a2));
+    } else {
+        const double G = nv / (nv * (1 - k) + k) * nl / (nl * (1 - k) + k);
+        DG = D * G / (4 * nl * nv);
+    }
+    auto channel = [&](double a, double& d, double& s) {
+        const double f0 = 0.04 * (1 - metallic) + a * metallic;
+        const double F = f0 + (1 - f0) * std::pow(1 - vh, 5);
+        d = (1 - F) * (1 - metallic) * a / pi * nl;
+        s = F * DG * nl;
+    };
+    Brdf b;
+    channel(albedo.x, b.diffuse.x, b.specular.x);
+    channel(albedo.y, b.diffuse.y, b.specular.y);
+    channel(albedo.z, b.diffuse.z, b.specular.z);
+    return b;
+}
+
+TEST_F(ShadingIncludeTest, ReflectLightIsTheThesisBrdf) {
+    const std::string body = R"(
+    FacetSurface s = facet_surface(vec3(0.0, 0.0, 1.0), vec3(0.8, 0.5, 0.2), 0.3, 0.5, 0.04, 1.0, 1.0);
+    vec3 v = normalize(vec3(0.3, 0.1, 1.0)), l = normalize(vec3(-0.5, 0.2, 0.8));
+    float NdotV = clamp(dot(s.n, v), 0.0, 1.0);
+    vec3 d, sp;
+    facet_reflect_light(s, v, NdotV, l, vec3(2.0), k_direct(s.roughness), false, d, sp);
+    put(0u, d); put(3u, sp);
+    facet_reflect_light(s, v, NdotV, l, vec3(2.0), 0.0, true, d, sp);
+    put(6u, d); put(9u, sp);
+    facet_reflect_light(s, v, NdotV, vec3(0.0, 0.6, -0.8), vec3(2.0), k_direct(s.roughness), false, d, sp);
+    put(12u, d + sp);
+)";
+    auto v = test::run_compute_probe(ctx(), "reflect_probe.comp", probe(body), 15);
+    ASSERT_EQ(v.size(), 15u);
+    const V3 n{0, 0, 1}, view = normalize({0.3, 0.1, 1.0}), l = normalize({-0.5, 0.2, 0.8}), albedo{0.8, 0.5, 0.2};
+    const double k = (0.5 + 1) * (0.5 + 1) / 8;
+    for (bool correlated : {false, true}) {
+        const Brdf b = thesis_brdf(n, view, l, albedo, 0.3, 0.5, correlated, k);
+        const size_t o = correlated ? 6 : 0;
+        const double d[3] = {b.diffuse.x, b.diffuse.y, b.diffuse.z}, s[3] = {b.specular.x, b.specular.y, b.specular.z};
+        for (int c = 0; c < 3; ++c) {
+            const std::string what = std::to_string(c) + (correlated ? " height-correlated" : " Schlick-GGX");
+            EXPECT_NEAR(v[o + c], 2 * d[c], 1e-5 * std::max(1.0, d[c])) << "diffuse " << what;
+            EXPECT_NEAR(v[o + 3 + c], 2 * s[c], 1e-5 * std::max(1.0, s[c])) << "specular " << what;
+        }
+    }
+    for (int c = 12; c < 15; ++c) EXPECT_EQ(v[c], 0.0f);  // light from below the surface
+}
+
+// lod = roughness x (levels - 1); a disk's specular fades in across the level below the
+// first one baked without the extracted lights.
+TEST_F(ShadingIncludeTest, SpecularLodAndDiskWeightFollowTheBakeLevels) {
+    const std::string body = R"(
+    values[0] = facet_specular_lod(0.5, 9.0);
+    values[1] = facet_specular_lod(1.0, 9.0);
+    values[2] = facet_disk_specular_weight(0.5, 9.0, 4.0);
+    values[3] = facet_disk_specular_weight(0.4, 9.0, 4.0);
+    values[4] = facet_disk_specular_weight(0.3, 9.0, 4.0);
+    values[5] = facet_disk_specular_weight(0.0, 9.0, 0.0);
+)";
+    auto v = test::run_compute_probe(ctx(), "lod_probe.comp", probe(body), 6);
+    ASSERT_EQ(v.size(), 6u);
+    EXPECT_FLOAT_EQ(v[0], 4.0f);
+    EXPECT_FLOAT_EQ(v[1], 8.0f);
+    EXPECT_FLOAT_EQ(v[2], 1.0f);
+    EXPECT_NEAR(v[3], 0.2, 1e-6);
+    EXPECT_FLOAT_EQ(v[4], 0.0f);
+    EXPECT_FLOAT_EQ(v[5], 1.0f);  // no split level: every level is without the lights
+}
+
+// A small disk on a rough surface is a point source of intensity L x solid angle; on a
+// mirror-like surface whose reflection hits it, the mirror image L (F0 A + B).
+TEST_F(ShadingIncludeTest, DiskLightLimits) {
+    const double theta = 0.02;
+    const std::string body = R"(
+    FacetDiskLight disk;
+    disk.direction = normalize(vec3(-0.5, 0.2, 0.8));
+    disk.cos_radius = cos(0.02);
+    disk.angular_radius = 0.02;
+    disk.radiance = vec3(1000.0);
+    FacetSurface s = facet_surface(vec3(0.0, 0.0, 1.0), vec3(0.8, 0.5, 0.2), 0.3, 0.9, 0.04, 1.0, 1.0);
+    vec3 v = normalize(vec3(0.3, 0.1, 1.0));
+    float NdotV = clamp(dot(s.n, v), 0.0, 1.0);
+    vec3 lut = vec3(0.7, 0.1, 0.0);
+    vec3 d, sp;
+    facet_disk_light(s, v, NdotV, disk, lut, d, sp);
+    put(0u, d); put(3u, sp);
+    FacetSurface mirror = facet_surface(vec3(0.0, 0.0, 1.0), vec3(1.0, 0.5, 0.25), 1.0, 0.01, 0.04, 1.0, 1.0);
+    vec3 r = reflect(-disk.direction, mirror.n);  // v such that R hits the disk's centre
+    facet_disk_light(mirror, r, clamp(dot(mirror.n, r), 0.0, 1.0), disk, lut, d, sp);
+    put(6u, d); put(9u, sp);
+)";
+    auto v = test::run_compute_probe(ctx(), "disk_probe.comp", probe(body), 12);
+    ASSERT_EQ(v.size(), 12u);
+    const double omega = 2 * pi * (1 - std::cos(theta));
+    const Brdf b = thesis_brdf({0, 0, 1}, normalize({0.3, 0.1, 1.0}), normalize({-0.5, 0.2, 0.8}), {0.8, 0.5, 0.2}, 0.3,
+                               0.9, false, 0.9 * 0.9 / 2);
+    EXPECT_NEAR(v[0], 1000 * omega * b.diffuse.x, 0.01 * 1000 * omega * b.diffuse.x);
+    EXPECT_NEAR(v[2], 1000 * omega * b.diffuse.z, 0.01 * 1000 * omega * b.diffuse.z);
+    EXPECT_NEAR(v[3], 1000 * omega * b.specular.x, 0.01 * 1000 * omega * b.specular.x);
+    EXPECT_NEAR(v[5], 1000 * omega * b.specular.z, 0.01 * 1000 * omega * b.specular.z);
+    // Metal: no diffuse; F0 = albedo.
+    EXPECT_EQ(v[6], 0.0f);
+    EXPECT_NEAR(v[9], 1000 * (1.0 * 0.7 + 0.1), 1e-2);
+    EXPECT_NEAR(v[10], 1000 * (0.5 * 0.7 + 0.1), 1e-2);
+    EXPECT_NEAR(v[11], 1000 * (0.25 * 0.7 + 0.1), 1e-2);
+}
+
+// Turquin 2019: a light's specular scaled by 1 + F0 (1 / E - 1), E = A + B.
+TEST_F(ShadingIncludeTest, MultiscatterLightEnergy) {
+    auto v = test::run_compute_probe(ctx(), "energy_probe.comp",
+                                     probe("put(0u, facet_multiscatter_light_energy(vec3(1.0, 0.5, 0.0), "
+                                           "vec3(0.6, 0.2, 0.0)));\n"),
+                                     3);
+    ASSERT_EQ(v.size(), 3u);
+    EXPECT_NEAR(v[0], 1 + 1.0 * (1 / 0.8 - 1), 1e-6);
+    EXPECT_NEAR(v[1], 1 + 0.5 * (1 / 0.8 - 1), 1e-6);
+    EXPECT_NEAR(v[2], 1.0, 1e-6);
+}
+
+}  // namespace
+}  // namespace facet
