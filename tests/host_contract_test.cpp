@@ -173,5 +173,22 @@ TEST(HostContract, TheLibraryReadsNoEnvironmentVariable) {
     for (const std::string& reader : readers) ADD_FAILURE() << "the library reads the environment: " << reader;
 }
 
+// The device layer stands below the graph: nothing in gpu/ includes a graph header.
+TEST(HostContract, TheDeviceLayerDoesNotIncludeTheGraph) {
+    namespace fs = std::filesystem;
+    size_t files = 0;
+    for (const char* folder : {"engine/gpu", "include/facet/gpu"}) {
+        for (const auto& entry : fs::directory_iterator(fs::path(FACET_SOURCE_DIR) / folder)) {
+            if (!entry.is_regular_file()) continue;
+            ++files;
+            std::ifstream in(entry.path());
+            for (std::string line; std::getline(in, line);)
+                if (line.rfind("#include", 0) == 0 && contains(line, "graph/"))
+                    ADD_FAILURE() << entry.path().string() << " includes the graph: " << line;
+        }
+    }
+    EXPECT_GT(files, 10u);
+}
+
 }  // namespace
 }  // namespace facet
