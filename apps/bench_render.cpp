@@ -8,6 +8,7 @@
 #include <facet/io/atomic_file.h>
 #include "facet_bench_options.h"
 #include "render_job.h"
+#include "start_vulkan.h"
 
 namespace facet {
 namespace {
@@ -31,7 +32,7 @@ int run_render_bench(const cli::Parsed& a) {
     }
     const RenderJob& job = options.job;
     const int frames = options.frames;
-    auto created = Context::create({});
+    auto created = create_program_context();
     if (!created) {
         std::fprintf(stderr, "facet-bench: error: cannot start Vulkan: %s\n", created.error().message.c_str());
         return 1;

@@ -19,6 +19,8 @@
 #include <facet/io/json_writer.h>
 #include "facet_bench_options.h"
 #include "render_job.h"
+#include "shader_cache.h"
+#include "start_vulkan.h"
 #include <facet/shader/program_cache.h>
 #include "ibl_measure.h"
 #include <facet/reference/ibl_reference.h>
@@ -105,13 +107,13 @@ int run_sweep(const cli::Parsed& a) {
     const int runs = options.runs;
     const std::string& stages = options.stages;
     const std::string& out_dir = options.out_dir;
-    auto created = Context::create({});
+    auto created = create_program_context();
     if (!created) {
         std::fprintf(stderr, "facet-bench: error: cannot start Vulkan: %s\n", created.error().message.c_str());
         return 1;
     }
     Context& context = *created.value();
-    IblMeasure sweep(context, runs);
+    IblMeasure sweep(context, runs, ShaderCompilerOptions{shader_dir_from_environment()});
     std::vector<Row> rows;
     auto fail = [](const std::string& message) {
         std::fprintf(stderr, "facet-bench: error: %s\n", message.c_str());

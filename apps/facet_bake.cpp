@@ -101,6 +101,7 @@ int bake(const Options& o) {
 
     ShaderCompilerOptions compiler_options;
     compiler_options.disk_cache_dir = o.shader_cache;
+    compiler_options.source_dir = shader_dir_from_environment();
     ShaderCompiler compiler(compiler_options);
     ProgramCache programs(context, compiler);
     // Methods used outside their domain say so (bake.json and here).

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "shader_cache.h"
+
 namespace facet {
 
 namespace {
@@ -61,6 +63,7 @@ RenderBenchOptions parse_render_bench_options(const cli::Parsed& a) {
     RenderJob& job = o.job;
     job.model = a.get("--model", job.model);
     job.env = a.get("--env", job.env);
+    job.shader_dir = shader_dir_from_environment();
     if (a.has("--width")) job.frame.width = uint32_t(cli::parse_int(a.get("--width"), "--width", 1, 16384));
     if (a.has("--height")) job.frame.height = uint32_t(cli::parse_int(a.get("--height"), "--height", 1, 16384));
     if (a.has("--frames")) o.frames = cli::parse_int(a.get("--frames"), "--frames", 1, 10000);

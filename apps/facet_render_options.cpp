@@ -68,6 +68,7 @@ std::optional<RenderOptions> parse_render_program_options(int argc, char** argv)
     o.device = a.get("--device");
     o.validation = a.has("--validation");
     o.job.shader_cache_dir = shader_cache_dir(a);
+    o.job.shader_dir = shader_dir_from_environment();
     return o;
 }
 

@@ -32,6 +32,7 @@
 #include <facet/render/camera.h>
 #include "render_job.h"
 #include "render_options.h"
+#include "start_vulkan.h"
 #include <facet/render/tonemap.h>
 #include <facet/scene/material_presets.h>
 #include <facet/shader/program_cache.h>
@@ -110,8 +111,7 @@ int run(const Options& o) {
     if (!glfwVulkanSupported()) throw std::runtime_error("GLFW finds no Vulkan loader");
     uint32_t count = 0;
     const char** required = glfwGetRequiredInstanceExtensions(&count);
-    ContextOptions options;
-    options.device = o.device;
+    ContextOptions options = program_context_options(o.device);
     options.app_name = program;
     for (uint32_t i = 0; i < count; ++i) options.instance_extensions.push_back(required[i]);
     options.device_extensions = {VK_KHR_SWAPCHAIN_EXTENSION_NAME};

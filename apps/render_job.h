@@ -39,7 +39,7 @@ struct RenderJob {
     std::vector<Light> extra_lights;
     float ibl_intensity = 1.0f;
     bool extract_lights = false;  // suns and lamps out of the map, shaded as disk lights
-    std::string shader_dir;       // read shaders from here (hot reload); empty: FACET_SHADER_DIR or embedded
+    std::string shader_dir;       // read shaders from here (hot reload); empty: embedded (programs: FACET_SHADER_DIR)
     std::string shader_cache_dir; // on-disk SPIR-V cache (apps/shader_cache.h); empty: none
 };
 

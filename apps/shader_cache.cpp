@@ -18,4 +18,9 @@ std::string shader_cache_dir(const cli::Parsed& parsed) {
     return env ? env : "";
 }
 
+std::string shader_dir_from_environment() {
+    const char* env = std::getenv("FACET_SHADER_DIR");
+    return env ? env : "";
+}
+
 }  // namespace facet

@@ -14,4 +14,9 @@ void add_shader_cache_option(cli::Parser& parser);
 // The cache directory chosen by --shader-cache or FACET_SHADER_CACHE; empty: none.
 std::string shader_cache_dir(const cli::Parsed& parsed);
 
+// FACET_SHADER_DIR: read shaders from this directory instead of the embedded copies
+// (the library reads no environment variable; ShaderCompilerOptions::source_dir).
+// Empty: unset.
+std::string shader_dir_from_environment();
+
 }  // namespace facet

@@ -27,7 +27,7 @@ TEST(GpuContext, SelectsDeviceByIndexAndByName) {
     ContextOptions by_index;
     by_index.validation = false;
     by_index.device = "0";
-    auto first = Context::create(by_index);
+    auto first = test::create_context(by_index);
     ASSERT_TRUE(first) << first.error().message;
 
     ContextOptions by_name;
@@ -36,7 +36,7 @@ TEST(GpuContext, SelectsDeviceByIndexAndByName) {
     std::string name = first.value()->device_name();
     by_name.device = name.substr(0, 4);
     for (char& c : by_name.device) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-    auto second = Context::create(by_name);
+    auto second = test::create_context(by_name);
     ASSERT_TRUE(second) << second.error().message;
     EXPECT_EQ(second.value()->device_name(), name);
 }
@@ -45,13 +45,13 @@ TEST(GpuContext, UnknownDeviceIsAClearError) {
     ContextOptions options;
     options.validation = false;
     options.device = "no-such-gpu-xyz";
-    auto context = Context::create(options);
+    auto context = test::create_context(options);
     ASSERT_FALSE(context);
     EXPECT_NE(context.error().message.find("no-such-gpu-xyz"), std::string::npos) << context.error().message;
     EXPECT_NE(context.error().message.find("devices:"), std::string::npos) << context.error().message;
 
     options.device = "99";
-    auto by_index = Context::create(options);
+    auto by_index = test::create_context(options);
     ASSERT_FALSE(by_index);
     EXPECT_NE(by_index.error().message.find("'99'"), std::string::npos) << by_index.error().message;
 }
@@ -171,7 +171,7 @@ namespace {
 TEST(GpuValidation, WrongLayoutIsCounted) {
     ContextOptions options;
     options.validation = true;
-    auto created = Context::create(options);
+    auto created = test::create_context(options);
     ASSERT_TRUE(created) << created.error().message;
     Context& context = *created.value();
     ImageDesc desc;
@@ -204,7 +204,7 @@ TEST(GpuValidation, MissingBarrierIsASyncHazard) {
     ContextOptions options;
     options.validation = true;
     options.sync_validation = true;
-    auto created = Context::create(options);
+    auto created = test::create_context(options);
     ASSERT_TRUE(created) << created.error().message;
     Context& context = *created.value();
     Buffer a(context, 256, VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::gpu_only,

@@ -20,13 +20,13 @@ namespace {
 // The calls of each kind one tiny bake + render makes (counted once per process).
 uint64_t calls_per_session(FaultSite site) {
     static const auto counts = [] {
-        std::array<uint64_t, 3> before{}, after{};
-        for (int s = 0; s < 3; ++s) before[s] = fault_site_calls(FaultSite(s));
+        std::array<uint64_t, fault_site_count> before{}, after{};
+        for (int s = 0; s < fault_site_count; ++s) before[s] = fault_site_calls(FaultSite(s));
         auto context = test::own_context();
         EXPECT_TRUE(test::run_tiny_session(*context).error.empty());
-        for (int s = 0; s < 3; ++s) after[s] = fault_site_calls(FaultSite(s));
-        std::array<uint64_t, 3> n{};
-        for (int s = 0; s < 3; ++s) n[s] = after[s] - before[s];
+        for (int s = 0; s < fault_site_count; ++s) after[s] = fault_site_calls(FaultSite(s));
+        std::array<uint64_t, fault_site_count> n{};
+        for (int s = 0; s < fault_site_count; ++s) n[s] = after[s] - before[s];
         return n;
     }();
     return counts[static_cast<size_t>(site)];
@@ -125,6 +125,24 @@ TEST(Teardown, ANewContextWorksAfterADeviceLoss) {
     EXPECT_EQ(test::run_tiny_session(*fresh).error, "");
     fresh.reset();
     EXPECT_EQ(Context::process_validation_message_count(), before);
+}
+
+// The same fault part-way through a bake + render reaches the caller as one error.
+TEST(Teardown, AHangDuringABakeIsAnErrorNotAHang) {
+    const uint32_t before = Context::process_validation_message_count();
+    // A GPU that never finishes the third submission (FaultSite::hang), waited for 200 ms.
+    ContextOptions options = test::context_options();
+    options.fence_timeout_ms = 200;
+    options.inject_fault = FaultInjection{FaultSite::hang, 2};
+    auto created = test::create_context(options);
+    ASSERT_TRUE(created) << created.error().message;
+    std::unique_ptr<Context> context = std::move(created).value();
+    const test::TinyResult result = test::run_tiny_session(*context);
+    EXPECT_EQ(result.vk_result, VK_TIMEOUT) << result.error;
+    EXPECT_NE(result.error.find("timed out after 200 ms"), std::string::npos) << result.error;
+    EXPECT_EQ(context->allocator().stats().live_allocations, 0u);
+    context.reset();
+    EXPECT_EQ(Context::process_validation_message_count(), before) << "messages printed above";
 }
 
 }  // namespace

@@ -3,9 +3,8 @@
 #include <facet/core/result.h>
 #include <facet/core/units.h>
 
+#include <atomic>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <mutex>
 #include <string>
 
@@ -17,6 +16,9 @@ std::string vk_result_meaning(VkResult result) {
     switch (result) {
         case VK_ERROR_OUT_OF_DEVICE_MEMORY: return " (the device is out of memory: try smaller images or sizes)";
         case VK_ERROR_OUT_OF_HOST_MEMORY: return " (the driver is out of host memory)";
+        case VK_TIMEOUT:
+            return " (the GPU did not finish in time: it hung, or the work needs a longer "
+                   "ContextOptions::fence_timeout_ms)";
         case VK_ERROR_DEVICE_LOST:
             return " (the device was lost: a driver crash, reset or timeout; nothing more can run on it)";
         default: return "";
@@ -71,12 +73,11 @@ void vk_check(VkResult result, const char* what) {
 namespace {
 std::mutex g_log_mutex;
 LogSink g_log_sink;
-
-bool debug_logging() {
-    const char* env = std::getenv("FACET_LOG");
-    return env && std::strcmp(env, "debug") == 0;
-}
+std::atomic<LogLevel> g_log_level{LogLevel::info};
 }  // namespace
+
+void set_log_level(LogLevel minimum) { g_log_level.store(minimum); }
+LogLevel log_level() { return g_log_level.load(); }
 
 void set_log_sink(LogSink sink) {
     std::lock_guard lock(g_log_mutex);
@@ -89,8 +90,7 @@ void log(LogLevel level, std::string_view message) {
         g_log_sink(level, message);
         return;
     }
-    static const bool verbose = debug_logging();
-    if (level < LogLevel::warning && !(verbose || level == LogLevel::info)) return;
+    if (level < g_log_level.load()) return;
     static const char* names[] = {"debug", "info", "warning", "error"};
     std::fprintf(stderr, "facet %s: %.*s\n", names[static_cast<int>(level)],
                  static_cast<int>(message.size()), message.data());

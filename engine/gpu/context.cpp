@@ -4,16 +4,15 @@
 #include <link.h>
 
 #include <algorithm>
-#include <cctype>
-#include <cstdlib>
 #include <cstring>
-#include <optional>
 #include <string>
 #include <vector>
 
 #include <facet/core/log.h>
+#include "gpu/device_selection.h"
 #include "gpu/fault_injection.h"
 #include <facet/gpu/memory.h>
+#include <facet/gpu/requirements.h>
 
 namespace facet {
 
@@ -70,115 +69,11 @@ bool has_instance_extension(const char* layer, const char* name) {
     });
 }
 
-bool has_device_extension(VkPhysicalDevice device, const char* name) {
-    uint32_t count = 0;
-    vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr);
-    std::vector<VkExtensionProperties> extensions(count);
-    vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data());
-    return std::any_of(extensions.begin(), extensions.end(), [&](const VkExtensionProperties& e) {
-        return std::strcmp(e.extensionName, name) == 0;
-    });
-}
-
-std::string lower(std::string text) {
-    for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return text;
-}
-
-int type_rank(VkPhysicalDeviceType type) {
-    switch (type) {
-        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
-        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
-        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
-        case VK_PHYSICAL_DEVICE_TYPE_CPU: return 3;
-        default: return 4;
-    }
-}
-
-std::string describe_devices(const std::vector<VkPhysicalDevice>& devices) {
-    std::string text;
-    for (size_t i = 0; i < devices.size(); ++i) {
-        VkPhysicalDeviceProperties p;
-        vkGetPhysicalDeviceProperties(devices[i], &p);
-        text += (i ? ", " : "") + std::to_string(i) + ": " + p.deviceName;
-    }
-    return text.empty() ? "none" : text;
-}
-
-// Which device: the selector (index or name substring), else discrete > integrated >
-// virtual > CPU (lavapipe). Only Vulkan 1.3 devices with push descriptors qualify.
-Result<VkPhysicalDevice> pick_device(VkInstance instance, const std::string& selector) {
-    uint32_t count = 0;
-    vkEnumeratePhysicalDevices(instance, &count, nullptr);
-    std::vector<VkPhysicalDevice> devices(count);
-    vkEnumeratePhysicalDevices(instance, &count, devices.data());
-    auto usable = [](VkPhysicalDevice d) {
-        VkPhysicalDeviceProperties p;
-        vkGetPhysicalDeviceProperties(d, &p);
-        return p.apiVersion >= VK_API_VERSION_1_3 &&
-               has_device_extension(d, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
-    };
-    if (!selector.empty()) {
-        VkPhysicalDevice chosen = VK_NULL_HANDLE;
-        bool is_index = std::all_of(selector.begin(), selector.end(),
-                                    [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
-        if (is_index) {
-            size_t index = std::stoul(selector);
-            if (index < devices.size()) chosen = devices[index];
-        } else {
-            for (VkPhysicalDevice d : devices) {
-                VkPhysicalDeviceProperties p;
-                vkGetPhysicalDeviceProperties(d, &p);
-                if (lower(p.deviceName).find(lower(selector)) != std::string::npos) {
-                    chosen = d;
-                    break;
-                }
-            }
-        }
-        if (!chosen)
-            return Error{"no Vulkan device matches '" + selector + "' (devices: " +
-                         describe_devices(devices) + ")"};
-        if (!usable(chosen))
-            return Error{"device '" + selector +
-                         "' lacks Vulkan 1.3 or VK_KHR_push_descriptor"};
-        return chosen;
-    }
-    VkPhysicalDevice best = VK_NULL_HANDLE;
-    int best_rank = 1 << 30;
-    for (VkPhysicalDevice d : devices) {
-        if (!usable(d)) continue;
-        VkPhysicalDeviceProperties p;
-        vkGetPhysicalDeviceProperties(d, &p);
-        if (type_rank(p.deviceType) < best_rank) {
-            best = d;
-            best_rank = type_rank(p.deviceType);
-        }
-    }
-    if (!best)
-        return Error{"no Vulkan 1.3 device with VK_KHR_push_descriptor (devices: " +
-                         describe_devices(devices) + "); install mesa-vulkan-drivers for lavapipe",
-                     VK_ERROR_INCOMPATIBLE_DRIVER};
-    return best;
-}
-
-std::optional<uint32_t> find_queue_family(VkPhysicalDevice device) {
-    uint32_t count = 0;
-    vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
-    std::vector<VkQueueFamilyProperties> families(count);
-    vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
-    for (uint32_t i = 0; i < count; ++i) {
-        const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
-        if ((families[i].queueFlags & need) == need) return i;
-    }
-    return std::nullopt;
-}
-
 }  // namespace
 
 uint32_t Context::process_validation_message_count() { return g_process_validation_messages.load(); }
 
 bool ContextOptions::default_validation() {
-    if (const char* env = std::getenv("FACET_VALIDATION")) return std::strcmp(env, "0") != 0;
 #ifdef NDEBUG
     return false;
 #else
@@ -198,10 +93,20 @@ VKAPI_ATTR VkBool32 VKAPI_CALL Context::on_debug_message(
     return VK_FALSE;
 }
 
+// Options every context takes, whoever owns the device.
+static void apply_common_options(const ContextOptions& options) {
+    if (options.inject_fault) {
+        inject_fault(options.inject_fault->site, options.inject_fault->skip);
+        log(LogLevel::warning, "fault injection is armed: a Vulkan call will fail on purpose");
+    }
+}
+
 Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) {
-    if (Status armed = inject_faults_from_environment(); !armed) return armed.error();
+    if (options.fence_timeout_ms == 0) return Error{"ContextOptions::fence_timeout_ms must be at least 1 ms"};
+    apply_common_options(options);
     std::unique_ptr<Context> context(new Context());
     Context& c = *context;
+    c.fence_timeout_ms_ = options.fence_timeout_ms;
 
     std::vector<const char*> layers;
     std::vector<const char*> extensions;
@@ -229,7 +134,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     app.pApplicationName = options.app_name.c_str();
     app.pEngineName = "facet";
-    app.apiVersion = VK_API_VERSION_1_3;
+    app.apiVersion = device_requirements().api_version;
 
     const VkValidationFeatureEnableEXT enables[] = {
         VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
@@ -271,39 +176,24 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
             return Error{std::string("cannot create the debug messenger: ") + vk_result_name(r), r};
     }
 
-    std::string selector = options.device;
-    if (selector.empty())
-        if (const char* env = std::getenv("FACET_DEVICE")) selector = env;
-    auto picked = pick_device(c.instance_, selector);
+    auto picked = pick_device(c.instance_, options.device);
     if (!picked) return picked.error();
     c.physical_device_ = picked.value();
     auto family = find_queue_family(c.physical_device_);
     if (!family) return Error{"the device has no graphics+compute queue"};
     c.queue_family_ = *family;
 
-    VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-    features13.synchronization2 = VK_TRUE;
-    features13.dynamicRendering = VK_TRUE;
-    VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-    features12.pNext = &features13;
-    features12.hostQueryReset = VK_TRUE;
-    VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
-    vkGetPhysicalDeviceFeatures(c.physical_device_, &supported.features);
-    VkPhysicalDeviceFeatures2 enabled{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
-    enabled.pNext = &features12;
-    enabled.features.shaderStorageImageWriteWithoutFormat =
-        supported.features.shaderStorageImageWriteWithoutFormat;
-    enabled.features.shaderStorageImageReadWithoutFormat =
-        supported.features.shaderStorageImageReadWithoutFormat;
-    enabled.features.samplerAnisotropy = supported.features.samplerAnisotropy;
-    enabled.features.shaderFloat64 = supported.features.shaderFloat64;
+    // Exactly what a host is asked for (device_requirements), plus what the device
+    // offers of the optional features.
+    DeviceRequirements needs = device_requirements();
+    needs.add_supported_optional_features(c.physical_device_);
 
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo queue_info{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
     queue_info.queueFamilyIndex = c.queue_family_;
     queue_info.queueCount = 1;
     queue_info.pQueuePriorities = &priority;
-    std::vector<const char*> device_extensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    std::vector<const char*> device_extensions = needs.device_extensions;
     for (const std::string& e : options.device_extensions) {
         if (!has_device_extension(c.physical_device_, e.c_str()))
             return Error{"the Vulkan device extension " + e + " is not available on " + c.device_name(),
@@ -311,7 +201,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
         device_extensions.push_back(e.c_str());
     }
     VkDeviceCreateInfo device_info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
-    device_info.pNext = &enabled;
+    device_info.pNext = needs.chain();
     device_info.queueCreateInfoCount = 1;
     device_info.pQueueCreateInfos = &queue_info;
     device_info.enabledExtensionCount = static_cast<uint32_t>(device_extensions.size());
@@ -335,13 +225,24 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     return context;
 }
 
-Result<std::unique_ptr<Context>> Context::adopt(const HostVulkan& host, const ContextOptions&) {
-    if (Status armed = inject_faults_from_environment(); !armed) return armed.error();
+Result<std::unique_ptr<Context>> Context::adopt(const HostVulkan& host, const ContextOptions& options) {
+    if (!host.instance || !host.physical_device || !host.device || !host.queue)
+        return Error{"HostVulkan: instance, physical device, device and queue are all required"};
+    if (options.fence_timeout_ms == 0) return Error{"ContextOptions::fence_timeout_ms must be at least 1 ms"};
+    EnabledDevice enabled;
+    enabled.api_version = host.api_version;
+    enabled.physical_device = host.physical_device;
+    enabled.extensions = host.device_extensions;
+    enabled.features = host.enabled_features;
+    enabled.core_features = host.enabled_core_features;
+    if (std::vector<std::string> lacks = unmet_device_requirements(device_requirements(), enabled); !lacks.empty())
+        return Error{"the host's device lacks: " + join(lacks) +
+                         " (facet::device_requirements() lists what to enable; HostVulkan states what was)",
+                     VK_ERROR_FEATURE_NOT_PRESENT};
+    apply_common_options(options);
 #ifdef FACET_ASAN
     pin_vulkan_libraries();
 #endif
-    if (!host.instance || !host.physical_device || !host.device || !host.queue)
-        return Error{"HostVulkan: instance, physical device, device and queue are all required"};
     std::unique_ptr<Context> context(new Context());
     Context& c = *context;
     c.instance_ = host.instance;
@@ -350,6 +251,8 @@ Result<std::unique_ptr<Context>> Context::adopt(const HostVulkan& host, const Co
     c.queue_ = host.queue;
     c.queue_family_ = host.queue_family;
     c.owns_device_ = false;
+    c.fence_timeout_ms_ = options.fence_timeout_ms;
+    c.submit_hook_ = host.submit;
     if (host.debug_utils)
         c.set_object_name_ = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
             vkGetInstanceProcAddr(c.instance_, "vkSetDebugUtilsObjectNameEXT"));
@@ -391,7 +294,12 @@ void Context::finish_setup() {
 }
 
 Context::~Context() {
-    if (device_) vkDeviceWaitIdle(device_);
+    // Every submission of Facet's was waited for before submit_and_wait returned, so
+    // nothing of Facet's is pending here (a timed-out one aside, which is never waited
+    // for again: the GPU did not answer within the limit once already). A host's device
+    // and queue are never waited on: the host may be using them. Facet's own device is
+    // drained, since a program may have submitted its own work on it (the viewer).
+    if (owns_device_ && device_ && !timed_out_) vkDeviceWaitIdle(device_);
     allocator_.reset();
     if (fence_) vkDestroyFence(device_, fence_, nullptr);
     if (command_pool_) vkDestroyCommandPool(device_, command_pool_, nullptr);
@@ -414,7 +322,7 @@ void Context::set_name(VkObjectType type, uint64_t handle, const std::string& na
     set_object_name_(device_, &info);
 }
 
-void Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record) {
+void Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record, const char* what) {
     std::lock_guard lock(submit_mutex_);
     VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     alloc.commandPool = command_pool_;
@@ -424,25 +332,28 @@ void Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record
     vk_check(vkAllocateCommandBuffers(device_, &alloc, &cmd), "vkAllocateCommandBuffers");
     set_name(cmd, VK_OBJECT_TYPE_COMMAND_BUFFER, "facet one-shot");
     struct Free {
-        VkDevice device;
-        VkCommandPool pool;
+        const Context& context;
         VkCommandBuffer cmd;
-        ~Free() { vkFreeCommandBuffers(device, pool, 1, &cmd); }
-    } free_later{device_, command_pool_, cmd};
+        // A command buffer whose wait timed out may still be executing: it is left to
+        // the pool, freed with it.
+        ~Free() {
+            if (!context.timed_out_) vkFreeCommandBuffers(context.device_, context.command_pool_, 1, &cmd);
+        }
+    } free_later{*this, cmd};
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     vk_check(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer");
     record(cmd);
     vk_check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
-    submit_locked(cmd);
+    submit_locked(cmd, what);
 }
 
-void Context::submit_and_wait(VkCommandBuffer cmd) {
+void Context::submit_and_wait(VkCommandBuffer cmd, const char* what) {
     std::lock_guard lock(submit_mutex_);
-    submit_locked(cmd);
+    submit_locked(cmd, what);
 }
 
-void Context::submit_locked(VkCommandBuffer cmd) {
+void Context::submit_locked(VkCommandBuffer cmd, const char* what) {
     VkCommandBufferSubmitInfo cmd_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
     cmd_info.commandBuffer = cmd;
     VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
@@ -451,12 +362,29 @@ void Context::submit_locked(VkCommandBuffer cmd) {
     // After a loss every later submission fails the same way, without touching the
     // device again (vkQueueSubmit2's valid usage no longer holds for a lost device).
     if (device_lost_) throw VulkanError(VK_ERROR_DEVICE_LOST, "vkQueueSubmit2 (the device was lost earlier)");
+    // After a timeout the fence may still be pending, so it cannot be reset.
+    if (timed_out_)
+        throw VulkanError(VK_TIMEOUT, "vkQueueSubmit2 (an earlier wait for the GPU timed out; this context "
+                                      "takes no more work)");
     vk_check(vkResetFences(device_, 1, &fence_), "vkResetFences");
     VkResult r = take_injected_fault(FaultSite::submit);
-    if (r == VK_SUCCESS) r = vkQueueSubmit2(queue_, 1, &submit, fence_);
-    if (r == VK_SUCCESS) r = vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX);
+    // An injected hang: the submission is dropped, so the fence never signals.
+    const bool hang = r == VK_SUCCESS && take_injected_fault(FaultSite::hang) != VK_SUCCESS;
+    if (r == VK_SUCCESS && !hang)
+        r = submit_hook_ ? submit_hook_(queue_, submit, fence_) : vkQueueSubmit2(queue_, 1, &submit, fence_);
     if (r == VK_ERROR_DEVICE_LOST) device_lost_ = true;
-    vk_check(r, "vkQueueSubmit2");
+    vk_check(r, submit_hook_ ? "vkQueueSubmit2 (through the host's submit hook)" : "vkQueueSubmit2");
+    // Milliseconds to nanoseconds, saturating: a limit beyond 584 years waits forever.
+    const uint64_t timeout_ns =
+        fence_timeout_ms_ > UINT64_MAX / 1'000'000 ? UINT64_MAX : fence_timeout_ms_ * 1'000'000;
+    r = vkWaitForFences(device_, 1, &fence_, VK_TRUE, timeout_ns);
+    if (r == VK_TIMEOUT) {
+        timed_out_ = true;
+        throw VulkanError(VK_TIMEOUT, "timed out after " + std::to_string(fence_timeout_ms_) +
+                                          " ms waiting for the GPU to finish " + what + " (vkWaitForFences)");
+    }
+    if (r == VK_ERROR_DEVICE_LOST) device_lost_ = true;
+    vk_check(r, "vkWaitForFences");
 }
 
 }  // namespace facet

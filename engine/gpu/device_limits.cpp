@@ -4,7 +4,6 @@
 #include <cstdio>
 
 #include <facet/gpu/context.h>
-#include <facet/graph/compiled_graph.h>
 
 namespace facet {
 
@@ -91,19 +90,6 @@ Status check_images_fit(const DeviceLimits& limits, const std::vector<NamedImage
                      "), more than the device's largest memory heap" + device + " (" + format_bytes(limits.heap_bytes) +
                      ")"};
     return Ok{};
-}
-
-Status check_graph_fits(const Context& context, const CompiledGraph& compiled) {
-    std::vector<NamedImage> images;
-    for (const PhysicalResource& p : compiled.physical_images)
-        if (!p.imported)
-            images.push_back({p.name, p.image_desc,
-                              (p.image_usage & (VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
-                                                VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT)) != 0});
-    uint64_t buffers = 0;
-    for (const PhysicalResource& p : compiled.physical_buffers)
-        if (!p.imported) buffers += p.buffer_desc.size;
-    return check_images_fit(device_limits(context), images, buffers);
 }
 
 }  // namespace facet

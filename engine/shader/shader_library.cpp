@@ -1,6 +1,5 @@
 #include <facet/shader/shader_library.h>
 
-#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <vector>
@@ -9,10 +8,7 @@
 
 namespace facet {
 
-ShaderLibrary::ShaderLibrary(std::string source_dir) : source_dir_(std::move(source_dir)) {
-    if (source_dir_.empty())
-        if (const char* env = std::getenv("FACET_SHADER_DIR")) source_dir_ = env;
-}
+ShaderLibrary::ShaderLibrary(std::string source_dir) : source_dir_(std::move(source_dir)) {}
 
 std::optional<std::string> ShaderLibrary::load(std::string_view name) const {
     const std::string path = normalize_shader_path(name);

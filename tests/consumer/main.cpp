@@ -10,7 +10,9 @@
 #include <cstring>
 
 int main() {
-    auto context = facet::Context::create();
+    facet::ContextOptions options;
+    options.validation = true;  // the library reads no FACET_VALIDATION: a host chooses
+    auto context = facet::Context::create(options);
     if (!context) {
         std::fprintf(stderr, "consumer: %s\n", context.error().message.c_str());
         return 1;

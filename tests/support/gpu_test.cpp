@@ -1,6 +1,7 @@
 #include "support/gpu_test.h"
 
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 
 namespace facet::test {
@@ -32,13 +33,28 @@ public:
 
 }  // namespace
 
+ContextOptions context_options() {
+    ContextOptions options;
+    const char* validation = std::getenv("FACET_VALIDATION");
+    options.validation = !(validation && std::strcmp(validation, "0") == 0);
+    options.sync_validation = options.validation;
+    if (const char* device = std::getenv("FACET_DEVICE")) options.device = device;
+    return options;
+}
+
+Result<std::unique_ptr<Context>> create_context(const ContextOptions& options) { return Context::create(options); }
+
+Result<std::unique_ptr<Context>> adopt_context(const HostVulkan& host, const ContextOptions& options) {
+    return Context::adopt(host, options);
+}
+
 Context& gpu() {
     std::unique_ptr<Context>& context = shared_context();
     if (!context) {
-        ContextOptions options;
+        ContextOptions options = context_options();
         options.validation = true;
         options.sync_validation = true;
-        auto created = Context::create(options);
+        auto created = create_context(options);
         if (!created) {
             ADD_FAILURE() << "cannot create a Vulkan context: " << created.error().message;
             std::abort();

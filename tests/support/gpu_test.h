@@ -3,9 +3,19 @@
 // synchronization validation on; every GPU test fails on any validation message.
 #include <gtest/gtest.h>
 
+#include <memory>
+
 #include <facet/gpu/context.h>
 
 namespace facet::test {
+
+// The one place tests turn the environment into context options (the library reads
+// none): validation and synchronization validation on unless FACET_VALIDATION=0 (ctest
+// sets 1), the device FACET_DEVICE names.
+ContextOptions context_options();
+// Context::create / Context::adopt for tests; every test context is made here.
+Result<std::unique_ptr<Context>> create_context(const ContextOptions& options = context_options());
+Result<std::unique_ptr<Context>> adopt_context(const HostVulkan& host, const ContextOptions& options = context_options());
 
 // The shared context (created on first use; a test that cannot get it fails).
 Context& gpu();

@@ -9,16 +9,17 @@
 
 #include <facet/gpu/context.h>
 #include "render_job.h"
+#include "support/gpu_test.h"
 
 namespace facet::test {
 
 // A context of the test's own (not the shared one), so that its teardown, where the
 // validation layer reports objects left behind, happens inside the test.
 inline std::unique_ptr<Context> own_context(bool validation = true) {
-    ContextOptions options;
+    ContextOptions options = context_options();
     options.validation = validation;
     options.sync_validation = validation;
-    auto created = Context::create(options);
+    auto created = create_context(options);
     if (!created) {
         ADD_FAILURE() << created.error().message;
         return nullptr;

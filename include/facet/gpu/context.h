@@ -4,40 +4,56 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
-#include <mutex>
 #include <memory>
+#include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <vulkan/vulkan.h>
 
 #include <facet/core/result.h>
+#include <facet/gpu/faults.h>
 
 namespace facet {
 
 class Allocator;
 
 struct ContextOptions {
-    // Khronos validation layer + debug-utils messenger. Default: on in Debug builds or
-    // when FACET_VALIDATION=1, off otherwise (FACET_VALIDATION=0 forces off).
+    // Khronos validation layer + debug-utils messenger. Default: on when the library is a
+    // Debug build, off otherwise. (The library reads no environment variable; the
+    // programs map FACET_VALIDATION onto this.)
     bool validation = default_validation();
     // GPU-assisted synchronization validation (only with validation).
     bool sync_validation = true;
-    // Device by name substring or index; empty: FACET_DEVICE, else a discrete GPU,
-    // else the first CPU device (lavapipe).
+    // Context::create only: the device by index or name substring (an error lists the
+    // devices when none matches); empty: a discrete GPU, else integrated, virtual, and
+    // last a CPU device (lavapipe).
     std::string device;
     std::string app_name = "facet";
-    // More extensions, e.g. a window system's surface extensions (instance) and
-    // VK_KHR_swapchain (device); a missing one is an error naming it.
+    // Context::create only: more extensions, e.g. a window system's surface extensions
+    // (instance) and VK_KHR_swapchain (device); a missing one is an error naming it.
     std::vector<std::string> instance_extensions;
     std::vector<std::string> device_extensions;
+    // The longest Facet waits for the GPU to finish one submission, in milliseconds.
+    // A wait that runs out throws VulkanError(VK_TIMEOUT, "timed out after N ms waiting
+    // for ...") instead of hanging, and the context takes no more work (timed_out()).
+    // Generous by default: a large bake on a slow device takes seconds, not a minute.
+    uint64_t fence_timeout_ms = 60'000;
+    // Testing error paths: arms a fault (facet/gpu/faults.h) when the context is created
+    // or adopted. The armed fault is process-wide: it fires in whichever context reaches
+    // the site first.
+    std::optional<FaultInjection> inject_fault;
 
     static bool default_validation();
 };
 
 // Vulkan objects owned by a host engine. Facet creates and destroys only its own
-// objects on them. The device must have Vulkan 1.3 with synchronization2 and
-// dynamic rendering enabled, and VK_KHR_push_descriptor.
+// objects on them, waits only on its own fences (never vkDeviceWaitIdle or
+// vkQueueWaitIdle), and submits through `submit` when the host gives one.
+// The device must meet device_requirements() (facet/gpu/requirements.h); since Vulkan
+// cannot be asked what a VkDevice enabled, the host states it here and Context::adopt
+// names every requirement that is missing.
 struct HostVulkan {
     VkInstance instance = VK_NULL_HANDLE;
     VkPhysicalDevice physical_device = VK_NULL_HANDLE;
@@ -46,6 +62,20 @@ struct HostVulkan {
     uint32_t queue_family = 0;
     // True when the host enabled VK_EXT_debug_utils on the instance (object names).
     bool debug_utils = false;
+    // The instance's VkApplicationInfo::apiVersion.
+    uint32_t api_version = 0;
+    // VkDeviceCreateInfo::ppEnabledExtensionNames.
+    std::vector<std::string> device_extensions;
+    // VkDeviceCreateInfo::pNext (the chain holding VkPhysicalDeviceFeatures2 and the
+    // Vulkan 1.x feature structs) and pEnabledFeatures; read during adopt only.
+    const void* enabled_features = nullptr;
+    const VkPhysicalDeviceFeatures* enabled_core_features = nullptr;
+    // Every submission of Facet's goes through this when set (one VkSubmitInfo2 and the
+    // fence Facet then waits on), so the host can hold its own lock on the queue, which
+    // Vulkan requires to be externally synchronised. Called from whichever thread
+    // submits (Context::submit_and_wait and what uses it), one call at a time per
+    // context. Empty: Facet calls vkQueueSubmit2 itself.
+    std::function<VkResult(VkQueue, const VkSubmitInfo2&, VkFence)> submit;
 };
 
 // Thread safety: a Context may be used from several threads at once for creating and
@@ -54,12 +84,25 @@ struct HostVulkan {
 // uploads and readbacks), which serialise on the one queue. Objects built on it (a
 // RenderGraph, GraphRun, ProgramCache, ShaderCompiler, RenderSession) belong to one
 // thread at a time. Several contexts may live in one process; fault injection and the
-// process-wide validation count are shared by them.
+// process-wide validation count are shared by them. Destroy a Context (and everything
+// built on it) only after every other thread is done with it.
+//
+// Errors: create and adopt return an Error naming what is wrong. Work submitted on the
+// device (submit_and_wait and what is built on it) throws VulkanError when the device
+// fails (out of memory, device lost, a wait timed out); constructors of objects built on
+// a Context do the same. UsageError marks programmer misuse.
 class Context {
 public:
+    // A device of Facet's own: instance (with validation when asked), device, queue.
     static Result<std::unique_ptr<Context>> create(const ContextOptions& options = {});
+    // The host's device: checked against device_requirements(); the Error names each
+    // requirement the host did not enable. Of `options`, validation, device,
+    // instance_extensions and device_extensions do not apply (the host made those choices).
     static Result<std::unique_ptr<Context>> adopt(const HostVulkan& host,
                                                   const ContextOptions& options = {});
+    // On an adopted device: destroys Facet's objects only, without waiting for the device
+    // (Facet's own submissions have all been waited for). On its own device: waits for
+    // the device (unless a wait timed out), then destroys it.
     ~Context();
     Context(const Context&) = delete;
     Context& operator=(const Context&) = delete;
@@ -86,6 +129,10 @@ public:
     // True once a submission reported VK_ERROR_DEVICE_LOST: every later submission
     // throws VulkanError(VK_ERROR_DEVICE_LOST); destroying objects stays valid.
     bool device_lost() const { return device_lost_.load(); }
+    // True once a wait for the GPU ran past ContextOptions::fence_timeout_ms: every later
+    // submission throws VulkanError(VK_TIMEOUT) at once; destroying objects stays valid.
+    bool timed_out() const { return timed_out_.load(); }
+    uint64_t fence_timeout_ms() const { return fence_timeout_ms_; }
 
     // Debug name for any Vulkan object (no-op without VK_EXT_debug_utils).
     void set_name(VkObjectType type, uint64_t handle, const std::string& name) const;
@@ -94,10 +141,14 @@ public:
         set_name(type, reinterpret_cast<uint64_t>(handle), name);
     }
 
-    // Records with `record` into a one-time command buffer, submits, waits.
-    void submit_and_wait(const std::function<void(VkCommandBuffer)>& record);
-    // Submits an already recorded command buffer and waits for it.
-    void submit_and_wait(VkCommandBuffer cmd);
+    // Records with `record` into a one-time command buffer, submits (through
+    // HostVulkan::submit when given), waits on Facet's fence for at most
+    // fence_timeout_ms. `what` names the work in a timeout's message. Throws VulkanError
+    // on failure (VK_TIMEOUT: "timed out after N ms waiting for <what>").
+    void submit_and_wait(const std::function<void(VkCommandBuffer)>& record,
+                         const char* what = "a one-shot submission");
+    // Submits an already recorded command buffer and waits for it, as above.
+    void submit_and_wait(VkCommandBuffer cmd, const char* what = "a submitted command buffer");
 
     PFN_vkCmdPushDescriptorSetKHR cmd_push_descriptor_set = nullptr;
     PFN_vkCmdBeginDebugUtilsLabelEXT cmd_begin_label = nullptr;
@@ -106,7 +157,7 @@ public:
 private:
     Context() = default;
     void finish_setup();
-    void submit_locked(VkCommandBuffer cmd);
+    void submit_locked(VkCommandBuffer cmd, const char* what);
     static VKAPI_ATTR VkBool32 VKAPI_CALL on_debug_message(
         VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
         const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
@@ -125,6 +176,9 @@ private:
     std::unique_ptr<Allocator> allocator_;
     std::atomic<uint32_t> validation_messages_{0};
     std::atomic<bool> device_lost_{false};
+    std::atomic<bool> timed_out_{false};
+    uint64_t fence_timeout_ms_ = 60'000;
+    std::function<VkResult(VkQueue, const VkSubmitInfo2&, VkFence)> submit_hook_;
     std::mutex submit_mutex_;  // one-shot pool and fence are shared
 };
 

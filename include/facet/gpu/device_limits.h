@@ -13,7 +13,6 @@
 namespace facet {
 
 class Context;
-struct CompiledGraph;
 
 struct DeviceLimits {
     std::string device_name;
@@ -42,8 +41,7 @@ struct NamedImage {
 // size and the limit it breaks.
 Status check_images_fit(const DeviceLimits& limits, const std::vector<NamedImage>& images, uint64_t buffer_bytes = 0);
 
-// The transient images and buffers `compiled` allocates when it runs.
-Status check_graph_fits(const Context& context, const CompiledGraph& compiled);
-
+// check_graph_fits (a graph's transient images and buffers) lives with the graph:
+// facet/graph/compiled_graph.h.
 
 }  // namespace facet

@@ -2,6 +2,10 @@
 // A small device-memory allocator (no allocator library is packaged in Debian):
 // blocks sub-allocated first-fit per memory type, dedicated allocations for large
 // resources and where the driver asks for them.
+//
+// Errors: allocation throws VulkanError (VK_ERROR_OUT_OF_DEVICE_MEMORY and the like,
+// naming the call and the size). Thread safety: every member may be called from several
+// threads at once.
 #include <cstdint>
 #include <memory>
 #include <mutex>

@@ -1,6 +1,10 @@
 #pragma once
 // Compute and graphics pipelines whose descriptors are pushed (VK_KHR_push_descriptor):
 // set 0 holds bindings 0..n-1 of the given types; one push-constant range for all stages.
+//
+// Errors: creation throws VulkanError when the driver fails and UsageError for
+// programmer misuse (empty SPIR-V). Thread safety: pipelines may be created on several
+// threads at once; binding and pushing record into the caller's command buffer.
 #include <cstdint>
 #include <span>
 #include <string>

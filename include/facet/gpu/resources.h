@@ -1,6 +1,11 @@
 #pragma once
 // Owning wrappers for buffers, images and samplers: each destroys its Vulkan objects
 // and frees its memory exactly once (move-only).
+//
+// Errors: the constructors throw VulkanError when the device fails (out of memory) and
+// UsageError for programmer misuse (a zero size, mip or layer count; a format
+// bytes_per_texel does not know). Thread safety: objects may be created and destroyed on
+// several threads at once (Context); one object belongs to one thread at a time.
 #include <cstdint>
 #include <string>
 #include <vector>

@@ -1,6 +1,11 @@
 #pragma once
 // Staging upload and readback outside any render graph (for setup and tests).
 // Inside a graph, copies are passes of their own.
+//
+// Each call submits and waits (Context::submit_and_wait, bounded by
+// ContextOptions::fence_timeout_ms). Errors: VulkanError when the device fails or the
+// wait times out; UsageError for programmer misuse (a mip or layer the image lacks, data
+// of the wrong size). Thread safety: as Context::submit_and_wait.
 #include <cstdint>
 #include <span>
 #include <vector>

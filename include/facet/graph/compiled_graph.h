@@ -7,6 +7,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include <facet/core/result.h>
 #include <facet/graph/render_graph.h>
 
 namespace facet {
@@ -68,5 +69,10 @@ struct CompiledGraph {
     std::string to_text() const;  // passes, uses with versions, barriers, lifetimes
     std::string to_dot() const;   // Graphviz: passes and resource versions
 };
+
+class Context;
+// The transient images and buffers `compiled` allocates when it runs, against the
+// device's limits (facet/gpu/device_limits.h); the error names the resource.
+Status check_graph_fits(const Context& context, const CompiledGraph& compiled);
 
 }  // namespace facet

@@ -31,7 +31,7 @@ struct Spirv {
 };
 
 struct ShaderCompilerOptions {
-    std::string source_dir;      // empty: FACET_SHADER_DIR, else the embedded sources
+    std::string source_dir;      // empty: the embedded sources only
     std::string disk_cache_dir;  // empty: no on-disk cache
     bool debug_info = false;     // keep debug information in the SPIR-V
 };

@@ -1,6 +1,7 @@
 #pragma once
-// Where shader sources come from: a directory on disk when one is given (or
-// FACET_SHADER_DIR is set: edit-and-reload), else the copies embedded at build time.
+// Where shader sources come from: a directory on disk when one is given (edit and
+// reload; the programs map FACET_SHADER_DIR and --shader-dir onto it), else the copies
+// embedded at build time. Thread safety: load() may be called from several threads.
 #include <optional>
 #include <string>
 #include <string_view>
@@ -9,7 +10,8 @@ namespace facet {
 
 class ShaderLibrary {
 public:
-    // `source_dir` empty: FACET_SHADER_DIR if set, else embedded only.
+    // `source_dir` empty: the embedded copies only. A file missing there falls back to
+    // the embedded copy.
     explicit ShaderLibrary(std::string source_dir = {});
 
     // The text of `name` (a path relative to shaders/), or nothing.
