@@ -20,7 +20,7 @@
 #include "facet_bench_options.h"
 #include "render_job.h"
 #include <facet/shader/program_cache.h>
-#include "ibl_measure.h"
+#include <facet/ibl/ibl_measure.h>
 #include <facet/reference/ibl_reference.h>
 
 namespace facet {

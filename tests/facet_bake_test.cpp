@@ -92,8 +92,8 @@ TEST(FacetBake, BakesTheBuiltInSky) {
     Ran bake = run("builtin:sky --width 128 --validation --out " + out);
     ASSERT_EQ(bake.status, 0) << bake.output;
     EXPECT_EQ(bake.output.find("validation:"), std::string::npos) << bake.output;
-    for (const char* name : {"specular.ktx2", "irradiance.ktx2", "brdf_lut.ktx2", "brdf_lut.png", "environment.exr",
-                             "environment.hdr", "environment.png", "bake.json"})
+    for (const char* name : {"specular.ktx2", "irradiance.ktx2", "brdf_lut.ktx2", "brdf_lut.png", "environment.ktx2",
+                             "environment.exr", "environment.hdr", "environment.png", "bake.json"})
         EXPECT_TRUE(fs::exists(fs::path(out) / name)) << name;
     std::ifstream json(fs::path(out) / "bake.json");
     std::string text((std::istreambuf_iterator<char>(json)), {});
@@ -102,7 +102,7 @@ TEST(FacetBake, BakesTheBuiltInSky) {
     EXPECT_NE(text.find("\"content_hash\""), std::string::npos) << text;
     size_t files = 0;
     for (auto& e : fs::directory_iterator(out)) files += e.is_regular_file();
-    EXPECT_EQ(files, 8u) << "no temporary files left behind";
+    EXPECT_EQ(files, 9u) << "no temporary files left behind";
     EXPECT_NE(text.find("\"roughness\": 1"), std::string::npos) << text;
     EXPECT_NE(text.find("\"bake_key\""), std::string::npos) << text;
 
