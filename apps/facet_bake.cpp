@@ -120,6 +120,7 @@ int bake(const Options& o) {
             std::fprintf(stderr, "%s: budget %.3g: %s %s (%s), predicted error %.4f%s\n", program, o.target_error,
                          c.stage.c_str(), c.method.c_str(), c.params.c_str(), c.predicted_error,
                          c.met ? "" : " (nothing met the target: the most accurate)");
+    for (const std::string& n : meta.extraction_notes) std::fprintf(stderr, "%s: light extraction: %s\n", program, n.c_str());
     for (const std::string& w : meta.warnings) std::fprintf(stderr, "%s: warning: %s\n", program, w.c_str());
     for (const std::string& n : meta.format_notes) std::fprintf(stderr, "%s: %s\n", program, n.c_str());
     std::vector<std::string> notes;

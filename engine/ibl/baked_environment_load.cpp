@@ -72,14 +72,14 @@ Result<Image> load_cube(Context& context, const std::string& dir, const Reader& 
     const std::string path = (fs::path(dir) / entry.text("file")).string();
     auto k = read_ktx2(path);
     if (!k) return k.error();
-    const uint32_t size = entry.count("size"), levels = entry.count("levels");
+    const uint32_t size = entry.count("size"), levels = entry.count("mip_levels");
     format = parse_format_name(entry.text("format"));
     auto mismatch = [&](const std::string& what, uint64_t file, uint64_t json) {
         return Error{path + ": " + what + " " + std::to_string(file) + ", but bake.json says " + std::to_string(json)};
     };
     if (format == VK_FORMAT_UNDEFINED) return Error{path + ": bake.json gives an unsupported format for it"};
-    if (k->format != format) return Error{path + ": format " + std::to_string(int(k->format)) +
-                                          ", but bake.json says " + format_name(format)};
+    if (k->format != format)
+        return Error{path + ": format " + format_name(k->format) + ", but bake.json says " + format_name(format)};
     if (k->width != size || k->height != size) return mismatch("size", k->width, size);
     if (k->levels != levels) return mismatch("levels", k->levels, levels);
     if (k->faces != (cube ? 6u : 1u)) return mismatch("faces", k->faces, cube ? 6 : 1);

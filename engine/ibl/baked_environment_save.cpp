@@ -36,7 +36,7 @@ Ktx2Image to_ktx2(const Image& image, Levels levels, const std::string& version)
 double rounded(double ms) { return std::round(ms * 1e3) / 1e3; }
 
 void write_image_entry(JsonWriter& j, const char* file, const Image& image) {
-    j.value("file", file).value("size", image.desc().width).value("levels", image.desc().mip_levels)
+    j.value("file", file).value("size", image.desc().width).value("mip_levels", image.desc().mip_levels)
         .value("format", format_name(image.desc().format));
 }
 
