@@ -119,6 +119,7 @@ Result<BakedEnvironment> bake(Context& context, ProgramCache& programs, const En
     meta.height = input.height;
     meta.source_width = input.source_width;
     meta.source_height = input.source_height;
+    meta.max_env_width = input.max_width;
     meta.preview_exposure = settings.preview_exposure;
 
     // A procedural sky is rendered into texels for the analyses (warnings, budget, lights);

@@ -135,6 +135,7 @@ Result<BakedEnvironment> load_dir(Context& context, const std::string& dir) {
     meta.height = input.count("height");
     meta.source_width = input.count("source_width");
     meta.source_height = input.count("source_height");
+    if (input.optional("max_env_width")) meta.max_env_width = input.count("max_env_width");
     meta.sanitized_texels = uint64_t(input.number("sanitized_texels"));
     for (const char* list : {"warnings", "format_notes"})
         if (const JsonValue* w = root.optional(list); w && w->is_array())

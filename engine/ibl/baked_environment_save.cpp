@@ -56,6 +56,7 @@ std::string bake_json(const BakedEnvironment& b) {
         .value("height", d.height)
         .value("source_width", d.source_width)
         .value("source_height", d.source_height)
+        .value("max_env_width", d.max_env_width)
         .value("sanitized_texels", int64_t(d.sanitized_texels))
         .end_object();
     j.begin_array("warnings");

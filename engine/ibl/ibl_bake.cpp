@@ -19,6 +19,7 @@ Result<EnvironmentSource> resolve_environment(const std::string& name, uint32_t 
                                               const EnvironmentLoadOptions& file_options) {
     EnvironmentSource source;
     source.name = name;
+    source.max_width = file_options.max_width;
     if (name == "builtin:sky") source.sky = ProceduralSky{};
     else if (name == "builtin:white") source.sky = ProceduralSky::white();
     else if (name.rfind("builtin:", 0) == 0)

@@ -38,6 +38,7 @@ struct BakeMetadata {
     uint64_t sanitized_texels = 0;
     uint32_t width = 0, height = 0;                // the environment as baked
     uint32_t source_width = 0, source_height = 0;  // the file's
+    uint32_t max_env_width = 0;  // wider files were downsampled to it while read (0: not recorded)
     IblSettings settings;            // as resolved and baked (the budget's methods, if any)
     std::vector<float> roughness;    // of every specular level (level 0 = 0)
     uint32_t first_specular_level = 0;  // levels below it were not needed (zero texels)

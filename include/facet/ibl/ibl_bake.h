@@ -30,6 +30,7 @@ struct EnvironmentSource {
     std::string content_hash;
     uint32_t width = 0, height = 0;                // what the bake uses
     uint32_t source_width = 0, source_height = 0;  // the file's (larger when downsampled on load)
+    uint32_t max_width = 0;  // the width files were limited to when read (EnvironmentLoadOptions)
 };
 
 // `builtin_width`: width of a procedural environment (height = width / 2); it may not
