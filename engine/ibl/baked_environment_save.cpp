@@ -29,7 +29,7 @@ Ktx2Image to_ktx2(const Image& image, Levels levels, const std::string& version)
     k.faces = image.desc().cube ? 6 : 1;
     k.levels = image.desc().mip_levels;
     k.level_data = std::move(levels);
-    k.key_values = {{"KTXwriter", "facet " + version}};
+    k.key_values = {{"KTXwriter", "facet-bake " + version}};
     return k;
 }
 
