@@ -8,6 +8,8 @@
 #include <sstream>
 
 #include <facet/gpu/transfer.h>
+#include <facet/graph/compiled_graph.h>
+#include <facet/graph/graph_run.h>
 #include <facet/ibl/bake_rules.h>
 #include <facet/ibl/baked_environment.h>
 #include <facet/reference/ibl_reference.h>
@@ -216,6 +218,54 @@ TEST_F(BakedEnvironmentTest, MissingTruncatedOrMismatchedFilesAreErrorsNamingThe
         write_text(d / "bake.json", json);
         expect_error(d, "environment.exr", "bake.json says 65x32");
     }
+}
+
+// The lower-level form: the bake's passes in the caller's graph, writing into the
+// caller's own images (here a LUT and a specular cube), texel for texel what
+// bake_environment keeps in RGBA32F.
+TEST_F(BakedEnvironmentTest, PassesWriteIntoTheCallersImages) {
+    const EnvironmentSource source = sun_source(64, 50.0);
+    BakeSettings settings = small_settings();
+    settings.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    auto baked = bake(source, settings);
+    ASSERT_TRUE(baked) << baked.error().message;
+    const IblSettings resolved = resolved_ibl_settings(settings.ibl, source);
+
+    const VkImageUsageFlags usage =
+        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    ImageDesc lut_desc;
+    lut_desc.width = lut_desc.height = resolved.lut.size;
+    ImageDesc spec_desc = baked->specular()->desc();
+    spec_desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    Image lut(ctx(), lut_desc, usage, "engine's lut");
+    Image specular(ctx(), spec_desc, usage, "engine's specular");
+    const ResourceState readable{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                                 VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+    ShaderCompiler compiler;
+    ProgramCache programs(ctx(), compiler);
+    IblBake ibl(ctx(), programs);
+    RenderGraph graph;
+    IblTargets targets;
+    targets.lut = graph.import_image("engine lut", {lut.handle(), lut_desc, {}, readable});
+    targets.specular = graph.import_image("engine specular", {specular.handle(), spec_desc, {}, readable});
+    auto images = ibl.add_passes(graph, source, resolved, {}, targets);
+    ASSERT_TRUE(images) << images.error().message;
+    CompiledGraph compiled = graph.compile();
+    GraphRun run(ctx(), compiled);
+    run.submit_and_wait();
+    EXPECT_TRUE(bytes_of(ctx(), lut) == bytes_of(ctx(), *baked->lut())) << "LUT";
+    EXPECT_TRUE(bytes_of(ctx(), specular) == bytes_of(ctx(), *baked->specular())) << "specular";
+
+    // An image of another size is refused, naming it.
+    RenderGraph wrong;
+    ImageDesc small = lut_desc;
+    small.width = small.height = resolved.lut.size / 2;
+    IblTargets bad;
+    bad.lut = wrong.import_image("engine lut", {lut.handle(), small, {}, readable});
+    auto refused = ibl.add_passes(wrong, source, resolved, {}, bad);
+    ASSERT_FALSE(refused);
+    EXPECT_NE(refused.error().message.find("the caller's brdf lut image is 8x8"), std::string::npos)
+        << refused.error().message;
 }
 
 TEST(BakeRules, WhatASceneNeedsAndTheSplitLevel) {
