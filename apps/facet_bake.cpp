@@ -9,7 +9,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <optional>
 #include <vector>
 
@@ -53,9 +52,8 @@ BakeSettings bake_settings(const Options& o) {
 bool up_to_date(const std::string& dir, const std::string& key) {
     for (const char* name : baked_environment_files())
         if (!fs::exists(fs::path(dir) / name)) return false;
-    std::ifstream in(fs::path(dir) / "bake.json");
-    std::string text((std::istreambuf_iterator<char>(in)), {});
-    return text.find("\"bake_key\": \"" + key + "\"") != std::string::npos;
+    auto saved = saved_bake_key(dir);
+    return saved && *saved == key;
 }
 
 int bake(const Options& o) {

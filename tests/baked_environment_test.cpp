@@ -119,6 +119,10 @@ TEST_F(BakedEnvironmentTest, SaveThenLoadGivesTheSameTexelsWithExtractedLights) 
     auto loaded = BakedEnvironment::load(ctx(), dir.path.string());
     ASSERT_TRUE(loaded) << loaded.error().message;
     expect_same(*baked, *loaded);
+    auto key = saved_bake_key(dir.path.string());
+    ASSERT_TRUE(key) << key.error().message;
+    EXPECT_EQ(*key, baked->metadata().bake_key);
+    EXPECT_FALSE(saved_bake_key((dir / "nowhere").string()));
     // The forward pass's inputs from either.
     RenderGraph graph;
     const IblInputs in = import_baked_environment(graph, *loaded, 0.5f);

@@ -255,6 +255,17 @@ Result<BakedEnvironment> load_dir(Context& context, const std::string& dir) {
 
 }  // namespace
 
+Result<std::string> saved_bake_key(const std::string& dir) {
+    const std::string json_path = (fs::path(dir) / "bake.json").string();
+    auto text = read_text(json_path);
+    if (!text) return text.error();
+    auto doc = parse_json(*text);
+    if (!doc) return Error{json_path + ": " + doc.error().message};
+    const JsonValue* key = doc->find("bake_key");
+    if (!key || !key->is_string()) return Error{json_path + ": bake_key is missing or malformed"};
+    return key->string();
+}
+
 Result<BakedEnvironment> BakedEnvironment::load(Context& context, const std::string& dir) {
     try {
         return load_dir(context, dir);

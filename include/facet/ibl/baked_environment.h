@@ -124,6 +124,11 @@ Result<BakedEnvironment> bake_environment(Context& context, ProgramCache& progra
 // The files a saved bake holds (those without which load() fails, and the previews).
 const std::vector<const char*>& baked_environment_files();
 
+// The bake key recorded in DIR/bake.json (bake_rules.h bake_key), without loading the
+// images: whether a saved bake (a cache entry, facet-bake's output) is of the same input
+// and settings. An Error names the file when it is missing or not a bake's description.
+Result<std::string> saved_bake_key(const std::string& dir);
+
 // The baked images as imported resources of a frame's graph, for the forward pass
 // (render/forward_renderer.h): left as they are found, readable by shaders.
 // `intensity` scales the environment's light. The graph must run while `baked` lives.
