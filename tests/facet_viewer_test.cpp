@@ -141,7 +141,7 @@ TEST(FacetViewer, ShaderHotReloadShowsErrorsAndKeepsRunning) {
         return std::string((std::istreambuf_iterator<char>(in)), {});
     };
     auto wait_for = [&](const std::string& text) {
-        for (int i = 0; i < 400; ++i) {
+        for (int i = 0; i < 2400; ++i) {  // up to 60 s: a loaded machine starts slowly
             if (log_text().find(text) != std::string::npos) return true;
             std::this_thread::sleep_for(std::chrono::milliseconds(25));
         }
