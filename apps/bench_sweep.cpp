@@ -22,7 +22,7 @@
 #include "shader_cache.h"
 #include "start_vulkan.h"
 #include <facet/shader/program_cache.h>
-#include "ibl_measure.h"
+#include <facet/ibl/ibl_measure.h>
 #include <facet/reference/ibl_reference.h>
 
 namespace facet {

@@ -20,7 +20,9 @@ cli::Parser make_parser() {
                   "size) or a built-in one (builtin:sky: a sun ~4e4 times the sky; builtin:white:\n"
                   "radiance 1). Writes into DIR: specular.ktx2 (GGX prefiltered cube, one roughness\n"
                   "per level), irradiance.ktx2 (E/pi cube), brdf_lut.ktx2 (R = A, G = B, B = E_avg),\n"
-                  "brdf_lut.png, environment.exr/.hdr/.png and bake.json. A bake whose bake.json\n"
+                  "brdf_lut.png, environment.ktx2 (the skybox's cube), environment.exr/.hdr/.png and\n"
+                  "bake.json. Outputs are RGBA16F unless --float32, or unless their values exceed\n"
+                  "RGBA16F's range (then RGBA32F, said here and in bake.json). A bake whose bake.json\n"
                   "records the same input and settings is skipped (--force redoes it).");
     p.option("--out", "DIR", "output directory (created if missing)")
         .option("--irradiance", "METHOD", "convolve (default), riemann, sh9, blur, lowmip")
@@ -42,6 +44,8 @@ cli::Parser make_parser() {
         .option("--target-error", "E", "accuracy budget: the cheapest methods whose measured relative RMS error\n"
                                         "                          against the brute-force truth is at most E (e.g. 0.02)")
         .option("--roughness", "A,B", "budget: the scene's roughness range; specular is judged on it (default 0,1)")
+        .flag("--float32", "store every output as RGBA32F (default RGBA16F)")
+        .flag("--extract-lights", "take suns and lamps out of the map as disk lights (recorded in bake.json)")
         .flag("--force", "bake even if DIR holds a bake of the same input and settings")
         .option("--device", "NAME|INDEX", "Vulkan device (default: FACET_DEVICE, a GPU, else lavapipe)")
         .flag("--validation", "enable the Khronos validation layer")
@@ -111,6 +115,8 @@ std::optional<BakeOptions> parse_bake_options(int argc, char** argv) {
             throw std::invalid_argument("--roughness: expected A,B with 0 <= A <= B <= 1, got '" + a.get("--roughness") + "'");
     }
     o.force = a.has("--force");
+    o.float32 = a.has("--float32");
+    o.extract_lights = a.has("--extract-lights");
     o.device = a.get("--device");
     o.validation = a.has("--validation");
     o.graph_dot = a.get("--graph-dot");

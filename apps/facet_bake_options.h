@@ -20,6 +20,8 @@ struct BakeOptions {
     uint32_t cube_size = 0;  // 0: input height / 2
     float exposure = 1.0f;
     bool validation = false, sanitize = false, force = false;
+    bool float32 = false;         // every output RGBA32F (else RGBA16F where the values fit)
+    bool extract_lights = false;  // suns and lamps as disk lights (ibl/light_extraction.h)
     double target_error = 0;  // 0: no accuracy budget
     float roughness_min = 0.0f, roughness_max = 1.0f;
     IrradianceSettings irradiance;

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -92,8 +93,8 @@ TEST(FacetBake, BakesTheBuiltInSky) {
     Ran bake = run("builtin:sky --width 128 --validation --out " + out);
     ASSERT_EQ(bake.status, 0) << bake.output;
     EXPECT_EQ(bake.output.find("validation:"), std::string::npos) << bake.output;
-    for (const char* name : {"specular.ktx2", "irradiance.ktx2", "brdf_lut.ktx2", "brdf_lut.png", "environment.exr",
-                             "environment.hdr", "environment.png", "bake.json"})
+    for (const char* name : {"specular.ktx2", "irradiance.ktx2", "brdf_lut.ktx2", "brdf_lut.png", "environment.ktx2",
+                             "environment.exr", "environment.hdr", "environment.png", "bake.json"})
         EXPECT_TRUE(fs::exists(fs::path(out) / name)) << name;
     std::ifstream json(fs::path(out) / "bake.json");
     std::string text((std::istreambuf_iterator<char>(json)), {});
@@ -102,7 +103,7 @@ TEST(FacetBake, BakesTheBuiltInSky) {
     EXPECT_NE(text.find("\"content_hash\""), std::string::npos) << text;
     size_t files = 0;
     for (auto& e : fs::directory_iterator(out)) files += e.is_regular_file();
-    EXPECT_EQ(files, 8u) << "no temporary files left behind";
+    EXPECT_EQ(files, 9u) << "no temporary files left behind";
     EXPECT_NE(text.find("\"roughness\": 1"), std::string::npos) << text;
     EXPECT_NE(text.find("\"bake_key\""), std::string::npos) << text;
 
@@ -281,3 +282,71 @@ TEST(FacetBake, AccuracyBudgetPicksTheCheapestMethodThatMeetsIt) {
 }
 
 }  // namespace
+
+namespace {
+
+// A clear-sky-like sun beyond RGBA16F's range (2e5 > 65504), written as an EXR.
+std::string write_bright_sun(const fs::path& dir, uint32_t width = 128, double diameter_deg = 5.0) {
+    const facet::test::Equirect sky = facet::test::sun_sky(width, width / 2, 2e5, diameter_deg, 30.0, 10.0);
+    const std::string path = (dir / "bright_sun.exr").string();
+    auto out = OIIO::ImageOutput::create(path);
+    EXPECT_TRUE(out);
+    OIIO::ImageSpec spec(int(sky.w), int(sky.h), 4, OIIO::TypeDesc::FLOAT);
+    EXPECT_TRUE(out->open(path, spec));
+    EXPECT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, sky.rgba.data()));
+    out->close();
+    return path;
+}
+
+}  // namespace
+
+// No texel becomes Inf because it exceeds half float: the outputs that need it are kept
+// in RGBA32F, said on stderr and in bake.json.
+TEST(FacetBake, ASunBeyondHalfFloatIsKeptInFloat32AndSaid) {
+    TempDir dir;
+    const std::string env = write_bright_sun(dir.path), out = (dir.path / "sun").string();
+    Ran bake = run(env + " --lut-size 8 --lut-samples 16 --irradiance-size 8 --samples 64 --out " + out);
+    ASSERT_EQ(bake.status, 0) << bake.output;
+    EXPECT_NE(bake.output.find("specular kept in R32G32B32A32_SFLOAT"), std::string::npos) << bake.output;
+    const std::string json = file_bytes(fs::path(out) / "bake.json");
+    EXPECT_NE(json.find("\"format_notes\": [\n    \"environment cube kept in R32G32B32A32_SFLOAT"), std::string::npos)
+        << json;
+    for (const char* name : {"specular.ktx2", "environment.ktx2", "irradiance.ktx2"}) {
+        auto k = facet::read_ktx2((fs::path(out) / name).string());
+        ASSERT_TRUE(k) << k.error().message;
+        const bool half = k->format == VK_FORMAT_R16G16B16A16_SFLOAT;
+        size_t bad = 0;
+        for (const auto& level : k->level_data)
+            for (size_t i = 0; i < level.size() / (half ? 2 : 4); ++i) {
+                float v;
+                if (half) {
+                    uint16_t h;
+                    std::memcpy(&h, level.data() + i * 2, 2);
+                    v = facet::half_to_float(h);
+                } else {
+                    std::memcpy(&v, level.data() + i * 4, 4);
+                }
+                bad += !std::isfinite(v);
+            }
+        EXPECT_EQ(bad, 0u) << name;
+        if (std::string(name) != "irradiance.ktx2") EXPECT_EQ(k->format, VK_FORMAT_R32G32B32A32_SFLOAT) << name;
+    }
+    // --float32: every output RGBA32F, nothing to say.
+    Ran f32 = run("builtin:white --width 32 --lut-size 8 --lut-samples 16 --float32 --out " + (dir.path / "f32").string());
+    ASSERT_EQ(f32.status, 0) << f32.output;
+    EXPECT_EQ(f32.output.find("kept in"), std::string::npos) << f32.output;
+    auto lut = facet::read_ktx2((dir.path / "f32" / "brdf_lut.ktx2").string());
+    ASSERT_TRUE(lut) << lut.error().message;
+    EXPECT_EQ(lut->format, VK_FORMAT_R32G32B32A32_SFLOAT);
+}
+
+TEST(FacetBake, ExtractedLightsAreRecordedWithTheirSplitLevel) {
+    TempDir dir;
+    const std::string env = write_bright_sun(dir.path, 256, 3.0), out = (dir.path / "lights").string();
+    Ran bake = run(env + " --extract-lights --lut-size 8 --lut-samples 16 --irradiance-size 8 --samples 64 --out " + out);
+    ASSERT_EQ(bake.status, 0) << bake.output;
+    EXPECT_NE(bake.output.find("extracted 1 light(s)"), std::string::npos) << bake.output;
+    const std::string json = file_bytes(fs::path(out) / "bake.json");
+    EXPECT_NE(json.find("\"angular_radius\""), std::string::npos) << json;
+    EXPECT_EQ(json.find("\"split_level\": 0"), std::string::npos) << json;
+}

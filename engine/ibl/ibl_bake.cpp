@@ -19,6 +19,7 @@ Result<EnvironmentSource> resolve_environment(const std::string& name, uint32_t 
                                               const EnvironmentLoadOptions& file_options) {
     EnvironmentSource source;
     source.name = name;
+    source.max_width = file_options.max_width;
     if (name == "builtin:sky") source.sky = ProceduralSky{};
     else if (name == "builtin:white") source.sky = ProceduralSky::white();
     else if (name.rfind("builtin:", 0) == 0)
@@ -119,7 +120,8 @@ struct Uploaded {
 
 Result<Uploaded> add_environment(RenderGraph& graph, Context& context, ProgramCache& programs,
                                  const Sampler& equirect_sampler, const EnvironmentSource& source, uint32_t cube_size,
-                                 std::unique_ptr<Buffer>& staging, const std::string& prefix) {
+                                 std::unique_ptr<Buffer>& staging, const std::string& prefix,
+                                 ImageHandle cube_target = {}) {
     Uploaded out;
     ImageDesc equirect_desc;
     equirect_desc.width = source.width;
@@ -143,32 +145,55 @@ Result<Uploaded> add_environment(RenderGraph& graph, Context& context, ProgramCa
     }
     auto cube = add_environment_cube_passes(
         graph, programs, equirect_sampler, out.equirect,
-        graph.create_image(prefix + "environment cube", environment_cube_desc(cube_size, full_mip_count(cube_size))));
+        cube_target.valid() ? cube_target
+                            : graph.create_image(prefix + "environment cube",
+                                                 environment_cube_desc(cube_size, full_mip_count(cube_size))));
     if (!cube) return cube.error();
     out.cube = *cube;
     return out;
 }
 
+// The caller's image `target` (if valid) instead of a new one of `desc`, when it has that description.
+Result<ImageHandle> target_or_new(RenderGraph& graph, ImageHandle target, const std::string& name,
+                                  const ImageDesc& desc) {
+    if (!target.valid()) return graph.create_image(name, desc);
+    const ImageDesc& have = graph.resource(target).image_desc;
+    if (!(have == desc))
+        return Error{"image-based lighting: the caller's " + name + " image is " + std::to_string(have.width) + "x" +
+                     std::to_string(have.height) + ", " + std::to_string(have.mip_levels) + " level(s), " +
+                     std::to_string(have.array_layers) + " layer(s), format " + std::to_string(int(have.format)) +
+                     "; the bake writes " + std::to_string(desc.width) + "x" + std::to_string(desc.height) + ", " +
+                     std::to_string(desc.mip_levels) + " level(s), " + std::to_string(desc.array_layers) +
+                     " layer(s), format " + std::to_string(int(desc.format)) + " (R32G32B32A32_SFLOAT)"};
+    return target;
+}
+
 }  // namespace
 
 Result<IblImages> IblBake::add_passes(RenderGraph& graph, const EnvironmentSource& source, const IblSettings& s,
-                                      const SpecularSplit& split) {
+                                      const SpecularSplit& split, const IblTargets& targets) {
     if (Status fits = check_ibl_fits(context_, source, s, split.whole && split.level > 0); !fits) return fits.error();
     IblImages out;
-    auto main = add_environment(graph, context_, programs_, *equirect_sampler_, source, s.cube_size, staging_, "");
+    auto cube_target = target_or_new(graph, targets.cube, "environment cube",
+                                     environment_cube_desc(s.cube_size, full_mip_count(s.cube_size)));
+    if (!cube_target) return cube_target.error();
+    auto main = add_environment(graph, context_, programs_, *equirect_sampler_, source, s.cube_size, staging_, "",
+                                *cube_target);
     if (!main) return main.error();
     out.equirect = main->equirect;
     out.cube = main->cube;
     if (s.want_irradiance) {
-        auto irradiance = add_irradiance_passes(graph, programs_, *cube_sampler_, out.cube,
-                                                graph.create_image("irradiance",
-                                                                   environment_cube_desc(s.irradiance.size, 1)),
-                                                s.irradiance, &out.sh9, out.equirect);
+        auto target = target_or_new(graph, targets.irradiance, "irradiance", environment_cube_desc(s.irradiance.size, 1));
+        if (!target) return target.error();
+        auto irradiance = add_irradiance_passes(graph, programs_, *cube_sampler_, out.cube, *target, s.irradiance,
+                                                &out.sh9, out.equirect);
         if (!irradiance) return irradiance.error();
         out.irradiance = *irradiance;
     }
     if (s.want_specular) {
-        ImageHandle specular = graph.create_image("specular", environment_cube_desc(s.cube_size, s.specular.levels));
+        auto target = target_or_new(graph, targets.specular, "specular", environment_cube_desc(s.cube_size, s.specular.levels));
+        if (!target) return target.error();
+        ImageHandle specular = *target;
         SpecularSettings rough = s.specular;
         if (split.whole && split.level > 0) {
             if (split.whole->width != source.width || split.whole->height != source.height)
@@ -191,7 +216,9 @@ Result<IblImages> IblBake::add_passes(RenderGraph& graph, const EnvironmentSourc
     if (s.want_lut) {
         ImageDesc lut_desc;
         lut_desc.width = lut_desc.height = s.lut.size;
-        auto lut = add_brdf_lut_passes(graph, programs_, s.lut, graph.create_image("brdf lut", lut_desc));
+        auto target = target_or_new(graph, targets.lut, "brdf lut", lut_desc);
+        if (!target) return target.error();
+        auto lut = add_brdf_lut_passes(graph, programs_, s.lut, *target);
         if (!lut) return lut.error();
         out.lut = *lut;
     }

@@ -30,6 +30,7 @@ struct EnvironmentSource {
     std::string content_hash;
     uint32_t width = 0, height = 0;                // what the bake uses
     uint32_t source_width = 0, source_height = 0;  // the file's (larger when downsampled on load)
+    uint32_t max_width = 0;  // the width files were limited to when read (EnvironmentLoadOptions)
 };
 
 // `builtin_width`: width of a procedural environment (height = width / 2); it may not
@@ -80,6 +81,17 @@ struct SpecularSplit {
     uint32_t level = 0;
 };
 
+// Images of the caller's, imported into the graph (an engine's own cube, specular cube,
+// irradiance cube or LUT), that the passes write instead of images of their own. Each
+// must have the description the bake would create (RGBA32F; the environment cube with
+// its full mip chain and the specular cube with settings.specular.levels levels, both
+// of settings.cube_size; the irradiance cube of settings.irradiance.size; the LUT of
+// settings.lut.size square), and usage STORAGE and SAMPLED; add_passes checks the
+// description. An invalid handle: the bake creates that image.
+struct IblTargets {
+    ImageHandle cube, irradiance, specular, lut;
+};
+
 // Owns what the passes use beyond the graph's resources (samplers, the staging buffer
 // of a file's texels), so it must outlive the graph's run.
 class IblBake {
@@ -91,7 +103,7 @@ public:
 
     // `settings` as returned by resolved_ibl_settings().
     Result<IblImages> add_passes(RenderGraph& graph, const EnvironmentSource& source, const IblSettings& settings,
-                                 const SpecularSplit& split = {});
+                                 const SpecularSplit& split = {}, const IblTargets& targets = {});
 
     const Sampler& cube_sampler() const { return *cube_sampler_; }
 

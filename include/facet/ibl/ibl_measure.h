@@ -1,14 +1,15 @@
 #pragma once
-// Measuring IBL bakes against the brute-force truth (tests/support/ibl_reference: double
-// precision over every texel), shared by facet-bench sweep and facet-bake's accuracy
-// budget: bake one stage with given settings (median wall time of its own passes, each
+// Measuring IBL bakes against the brute-force truth (facet::reference: double precision
+// over every texel), shared by facet-bench sweep and the accuracy budget (ibl/bake_budget.h): bake one stage with given settings (median wall time of its own passes, each
 // pass its own submission), read it back, compare cube levels with a truth function.
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <facet/core/result.h>
+#include <facet/ibl/bake_settings.h>
 #include <facet/ibl/ibl_bake.h>
 #include <facet/shader/program_cache.h>
 #include <facet/reference/ibl_reference.h>
@@ -48,16 +49,23 @@ struct Baked {
 
 class IblMeasure {
 public:
+    // With its own shader compiler and programs.
     IblMeasure(Context& context, int runs, const ShaderCompilerOptions& compiler = {});
+    // With the caller's programs (which must outlive it).
+    IblMeasure(Context& context, ProgramCache& programs, int runs);
     // Bakes `what` ("irradiance", "specular" or "lut") with `settings`, `runs` times.
-    Result<Baked> bake(const EnvironmentSource& env, IblSettings settings, const std::string& what);
+    // `stop` is asked after every pass ("pass"); when it says stop, the result is an
+    // Error for which is_cancelled() holds.
+    Result<Baked> bake(const EnvironmentSource& env, IblSettings settings, const std::string& what,
+                       const BakeStopFn& stop = {});
     Context& context() { return context_; }
-    ProgramCache& programs() { return programs_; }
+    ProgramCache& programs() { return *programs_; }
 
 private:
     Context& context_;
-    ShaderCompiler compiler_;
-    ProgramCache programs_;
+    std::unique_ptr<ShaderCompiler> compiler_;
+    std::unique_ptr<ProgramCache> own_programs_;
+    ProgramCache* programs_;
     int runs_;
 };
 

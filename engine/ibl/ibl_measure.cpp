@@ -1,4 +1,4 @@
-#include "ibl_measure.h"
+#include <facet/ibl/ibl_measure.h>
 
 #include <algorithm>
 #include <chrono>
@@ -8,7 +8,7 @@
 #include <facet/gpu/transfer.h>
 #include <facet/graph/compiled_graph.h>
 #include <facet/graph/graph_run.h>
-#include "interrupt.h"
+#include "ibl/bake_cancel.h"
 
 namespace facet {
 namespace {
@@ -27,9 +27,17 @@ double median(std::vector<double> v) {
 }
 
 IblMeasure::IblMeasure(Context& context, int runs, const ShaderCompilerOptions& compiler)
-    : context_(context), compiler_(compiler), programs_(context, compiler_), runs_(runs) {}
+    : context_(context),
+      compiler_(std::make_unique<ShaderCompiler>(compiler)),
+      own_programs_(std::make_unique<ProgramCache>(context, *compiler_)),
+      programs_(own_programs_.get()),
+      runs_(runs) {}
 
-Result<Baked> IblMeasure::bake(const EnvironmentSource& env, IblSettings settings, const std::string& what) {
+IblMeasure::IblMeasure(Context& context, ProgramCache& programs, int runs)
+    : context_(context), programs_(&programs), runs_(runs) {}
+
+Result<Baked> IblMeasure::bake(const EnvironmentSource& env, IblSettings settings, const std::string& what,
+                               const BakeStopFn& stop) try {
     settings.want_irradiance = what == "irradiance";
     settings.want_specular = what == "specular";
     settings.want_lut = what == "lut";
@@ -37,7 +45,7 @@ Result<Baked> IblMeasure::bake(const EnvironmentSource& env, IblSettings setting
     Baked out;
     std::vector<double> times;
     for (int r = 0; r < runs_; ++r) {
-        IblBake ibl(context_, programs_);
+        IblBake ibl(context_, *programs_);
         RenderGraph graph;
         auto images = ibl.add_passes(graph, env, settings);
         if (!images) return images.error();
@@ -55,7 +63,7 @@ Result<Baked> IblMeasure::bake(const EnvironmentSource& env, IblSettings setting
             const auto now = std::chrono::steady_clock::now();
             if (!shared_pass(pass)) ms += std::chrono::duration<double, std::milli>(now - last).count();
             last = now;
-            check_interrupt();
+            bake_safe_point(stop, "pass");
         });
         times.push_back(ms);
         if (r + 1 < runs_) continue;
@@ -72,6 +80,8 @@ Result<Baked> IblMeasure::bake(const EnvironmentSource& env, IblSettings setting
     }
     out.gpu_ms = median(times);
     return out;
+} catch (const BakeCancelled&) {
+    return Error{kBakeCancelled};
 }
 
 // A cube level compared with `truth(direction)` at 4 x 4 texels per face; any NaN, Inf or

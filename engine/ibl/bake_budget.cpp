@@ -1,9 +1,10 @@
-#include "bake_budget.h"
+#include <facet/ibl/bake_budget.h>
 
 #include <cmath>
 
-#include "ibl_measure.h"
-#include "interrupt.h"
+#include <facet/ibl/ibl_measure.h>
+
+#include "ibl/bake_cancel.h"
 
 namespace facet {
 namespace {
@@ -39,10 +40,9 @@ Result<std::pair<Settings, BudgetChoice>> first_meeting(
 
 }  // namespace
 
-Result<Budget> choose_within_budget(Context& context, const EnvironmentSource& env, const IblSettings& base,
-                                    double target, float rmin, float rmax,
-                                    const std::function<void(const std::string&)>& progress,
-                                    const ShaderCompilerOptions& compiler) {
+Result<Budget> choose_within_budget(Context& context, ProgramCache& programs, const EnvironmentSource& env,
+                                    const IblSettings& base, double target, float rmin, float rmax,
+                                    const BakeProgressFn& progress, const BakeStopFn& stop) try {
     if (!(target > 0)) return Error{"--target-error must be positive"};
     if (!(rmin >= 0 && rmin <= rmax && rmax <= 1)) return Error{"--roughness must be A,B with 0 <= A <= B <= 1"};
     if (env.sky || env.image.rgba.empty()) return Error{"budget: the environment's texels are needed"};
@@ -51,7 +51,7 @@ Result<Budget> choose_within_budget(Context& context, const EnvironmentSource& e
     budget.roughness_min = rmin;
     budget.roughness_max = rmax;
     budget.settings = base;
-    IblMeasure measure(context, 1, compiler);
+    IblMeasure measure(context, programs, 1);
     const test::Equirect e{env.width, env.height, env.image.rgba};
     auto stats_of = [](const ErrorStats& s) { return s.bad ? INFINITY : s.rel_rmse(); };
 
@@ -74,11 +74,11 @@ Result<Budget> choose_within_budget(Context& context, const EnvironmentSource& e
             [&](const IrradianceSettings& s) -> Result<std::pair<double, double>> {
                 IblSettings settings = base;
                 settings.irradiance = s;
-                auto baked = measure.bake(env, settings, "irradiance");
+                auto baked = measure.bake(env, settings, "irradiance", stop);
                 if (!baked) return baked.error();
                 ErrorStats stats;
                 compare_cube(*baked, 0, [&](const test::Vec3& n) {
-                    check_interrupt();  // each truth is a sum over every texel
+                    bake_safe_point(stop, "budget");  // each truth is a sum over every texel
                     return test::irradiance_over_pi(e, n);
                 }, stats, 3);
                 return std::pair{stats_of(stats), baked->gpu_ms};
@@ -112,7 +112,7 @@ Result<Budget> choose_within_budget(Context& context, const EnvironmentSource& e
             [&](const SpecularSettings& s) -> Result<std::pair<double, double>> {
                 IblSettings settings = base;
                 settings.specular = s;
-                auto baked = measure.bake(env, settings, "specular");
+                auto baked = measure.bake(env, settings, "specular", stop);
                 if (!baked) return baked.error();
                 ErrorStats stats;
                 for (uint32_t m = 1; m < baked->levels; ++m) {
@@ -121,7 +121,7 @@ Result<Budget> choose_within_budget(Context& context, const EnvironmentSource& e
                     const float step = 1.0f / float(baked->levels - 1);
                     if (r < rmin - step || r > rmax + step) continue;
                     compare_cube(*baked, m, [&](const test::Vec3& n) {
-                        check_interrupt();
+                        bake_safe_point(stop, "budget");
                         return test::prefiltered(table, n, r);
                     }, stats, 3);
                 }
@@ -145,7 +145,7 @@ Result<Budget> choose_within_budget(Context& context, const EnvironmentSource& e
             [&](const BrdfLutSettings& s) -> Result<std::pair<double, double>> {
                 IblSettings settings = base;
                 settings.lut = s;
-                auto baked = measure.bake(env, settings, "lut");
+                auto baked = measure.bake(env, settings, "lut", stop);
                 if (!baked) return baked.error();
                 const ErrorStats stats = lut_error(*baked, s.visibility == LutVisibility::height_correlated);
                 return std::pair{stats_of(stats), baked->gpu_ms};
@@ -156,6 +156,8 @@ Result<Budget> choose_within_budget(Context& context, const EnvironmentSource& e
         budget.choices.push_back(chosen->second);
     }
     return budget;
+} catch (const BakeCancelled&) {
+    return Error{kBakeCancelled};
 }
 
 }  // namespace facet

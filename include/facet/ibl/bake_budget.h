@@ -1,5 +1,5 @@
 #pragma once
-// The accuracy budget: given a target error, facet-bake picks for this environment the
+// The accuracy budget: given a target error, the bake picks for this environment the
 // cheapest irradiance method, specular method (judged only on the levels of the scene's
 // roughness range) and LUT that meet it, each measured by baking it and comparing with
 // the brute-force truth at sampled directions (ibl_measure.h). The choice and the
@@ -9,12 +9,13 @@
 #include <vector>
 
 #include <facet/core/result.h>
+#include <facet/ibl/bake_settings.h>
 #include <facet/ibl/ibl_bake.h>
-#include <facet/shader/compiler.h>
 
 namespace facet {
 
 class Context;
+class ProgramCache;
 
 struct BudgetChoice {
     std::string stage, method, params;
@@ -31,10 +32,12 @@ struct Budget {
 };
 
 // `env` must hold its texels (materialize_environment). Candidates are tried from the
-// cheapest (by facet-bench sweep's timings) until one meets the target.
-Result<Budget> choose_within_budget(Context& context, const EnvironmentSource& env, const IblSettings& base,
-                                    double target, float roughness_min, float roughness_max,
-                                    const std::function<void(const std::string&)>& progress = {},
-                                    const ShaderCompilerOptions& compiler = {});
+// cheapest (by facet-bench sweep's timings) until one meets the target. `progress` gets
+// a line per candidate measured; `stop` is asked between passes ("pass") and inside the
+// brute-force sums ("budget"): when it says stop, the Error is_cancelled().
+Result<Budget> choose_within_budget(Context& context, ProgramCache& programs, const EnvironmentSource& env,
+                                    const IblSettings& base, double target, float roughness_min,
+                                    float roughness_max, const BakeProgressFn& progress = {},
+                                    const BakeStopFn& stop = {});
 
 }  // namespace facet

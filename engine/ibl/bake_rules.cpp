@@ -1,0 +1,55 @@
+#include <facet/ibl/bake_rules.h>
+
+#include <algorithm>
+
+#include <facet/core/hash.h>
+#include <facet/ibl/method_domain.h>
+
+namespace facet {
+
+IblSettings ibl_settings_for_scene(IblSettings requested, const SceneNeeds& needs, bool multiscatter) {
+    requested.want_irradiance = requested.want_irradiance && (needs.diffuse || multiscatter);
+    requested.specular.min_roughness = std::max(requested.specular.min_roughness, needs.min_roughness);
+    return requested;
+}
+
+uint32_t light_split_level(std::span<const DiskLight> lights, uint32_t specular_levels) {
+    if (lights.empty()) return 0;
+    float widest = 0.0f;
+    for (const DiskLight& d : lights) widest = std::max(widest, d.angular_radius);
+    uint32_t level = 1;
+    while (level < specular_levels) {
+        const float roughness = float(level) / float(std::max(specular_levels - 1, 1u));
+        if (roughness * roughness >= widest) break;
+        ++level;
+    }
+    return level;
+}
+
+std::vector<std::string> bake_warnings(const EnvironmentSource& analysed, const IblSettings& resolved) {
+    if (analysed.sky || analysed.image.rgba.empty()) return {};
+    return method_warnings(environment_stats(analysed.image.rgba, analysed.width, analysed.height), resolved);
+}
+
+std::string bake_key(const EnvironmentSource& s, const BakeSettings& b) {
+    const IblSettings& o = b.ibl;
+    Hash64 h;
+    h.add(FACET_VERSION).add(s.content_hash);
+    const double values[] = {double(s.width), double(s.height), double(o.cube_size), double(o.specular.levels),
+                             double(b.preview_exposure), double(int(o.irradiance.method)), double(o.irradiance.size),
+                             double(o.irradiance.source_size), o.irradiance.riemann_step, o.irradiance.blur_sigma,
+                             double(o.irradiance.lowmip_size), double(o.irradiance.sh9_windowing),
+                             double(int(o.specular.method)), double(o.specular.sample_count),
+                             o.specular.automatic_convolve_from, double(o.specular.min_roughness),
+                             double(o.lut.size), double(o.lut.sample_count), double(int(o.lut.visibility)),
+                             b.target_error, double(b.roughness_min), double(b.roughness_max),
+                             double(o.want_irradiance), double(o.want_specular), double(o.want_lut),
+                             double(b.format), double(b.extract_lights),
+                             b.extraction.min_ratio_to_median, b.extraction.min_ratio_to_peak,
+                             b.extraction.max_solid_angle, b.extraction.min_power_fraction,
+                             double(b.extraction.max_lights)};
+    h.add(values, sizeof values);
+    return h.hex();
+}
+
+}  // namespace facet

@@ -1,0 +1,257 @@
+// BakedEnvironment::save / stage: facet-bake's files (design.md), written through an
+// OutputSet so that they appear together, bake.json last (the set's marker). bake.json
+// records everything load() needs to read the images back and check them.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+
+#include <facet/ibl/baked_environment.h>
+#include <facet/io/atomic_file.h>
+#include <facet/io/image_io.h>
+#include <facet/io/json_writer.h>
+#include <facet/io/ktx2.h>
+#include <facet/io/output_set.h>
+#include "ibl/bake_cancel.h"
+#include "ibl/baked_outputs.h"
+
+namespace facet {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+Ktx2Image to_ktx2(const Image& image, Levels levels, const std::string& version) {
+    Ktx2Image k;
+    k.format = image.desc().format;
+    k.width = image.desc().width;
+    k.height = image.desc().height;
+    k.faces = image.desc().cube ? 6 : 1;
+    k.levels = image.desc().mip_levels;
+    k.level_data = std::move(levels);
+    k.key_values = {{"KTXwriter", "facet-bake " + version}};
+    return k;
+}
+
+double rounded(double ms) { return std::round(ms * 1e3) / 1e3; }
+
+void write_image_entry(JsonWriter& j, const char* file, const Image& image) {
+    j.value("file", file).value("size", image.desc().width).value("mip_levels", image.desc().mip_levels)
+        .value("format", format_name(image.desc().format));
+}
+
+std::string bake_json(const BakedEnvironment& b) {
+    const BakeMetadata& d = b.metadata();
+    const IblSettings& s = d.settings;
+    JsonWriter j;
+    j.begin_object()
+        .value("program", "facet-bake")
+        .value("version", d.version)
+        .value("device", d.device)
+        .value("bake_key", d.bake_key)
+        .begin_object("input")
+        .value("name", d.input)
+        .value("content_hash", d.content_hash)
+        .value("width", d.width)
+        .value("height", d.height)
+        .value("source_width", d.source_width)
+        .value("source_height", d.source_height)
+        .value("max_env_width", d.max_env_width)
+        .value("sanitized_texels", int64_t(d.sanitized_texels))
+        .end_object();
+    j.begin_array("warnings");
+    for (const std::string& w : d.warnings) j.value({}, w);
+    j.end_array();
+    j.begin_array("format_notes");
+    for (const std::string& w : d.format_notes) j.value({}, w);
+    j.end_array();
+    if (d.budget) {
+        j.begin_object("budget").value("target_rel_rmse", d.budget->target);
+        j.begin_array("roughness_range")
+            .value({}, double(d.budget->roughness_min))
+            .value({}, double(d.budget->roughness_max))
+            .end_array();
+        j.begin_array("choices");
+        for (const auto& c : d.budget->choices)
+            j.begin_object().value("stage", c.stage).value("method", c.method).value("parameters", c.params)
+                .value("predicted_rel_rmse", c.predicted_error).value("measured_time_ms", c.time_ms)
+                .value("met", c.met).end_object();
+        j.end_array().end_object();
+    }
+    j.begin_object("environment").value("file", "environment.exr").value("width", d.width)
+        .value("height", d.height).value("format", format_name(b.environment().desc().format)).end_object();
+    j.begin_object("environment_cube");
+    write_image_entry(j, "environment.ktx2", b.cube());
+    j.value("filtering", "4x4 supersampled bilinear; mips by solid-angle-weighted 2x2 means").end_object();
+    if (const Image* spec = b.specular()) {
+        j.begin_object("specular");
+        write_image_entry(j, "specular.ktx2", *spec);
+        j.value("method", specular_method_name(s.specular.method))
+            .value("sample_count", s.specular.sample_count)
+            .value("automatic_convolve_from", double(s.specular.automatic_convolve_from))
+            .value("min_roughness", double(s.specular.min_roughness))
+            .value("first_level", d.first_specular_level)
+            .value("alpha", "roughness^2")
+            .value("lookup", "lod = roughness x (levels - 1)")
+            .begin_array("levels");
+        for (uint32_t m = 0; m < spec->desc().mip_levels; ++m)
+            j.begin_object()
+                .value("level", m)
+                .value("roughness", double(d.roughness[m]))
+                .value("method", m == 0 ? "copy" : specular_method_name(specular_level_method(s.specular, d.roughness[m])))
+                .value("size", std::max(1u, spec->desc().width >> m))
+                .end_object();
+        j.end_array().end_object();
+    }
+    if (const Image* irr = b.irradiance()) {
+        j.begin_object("irradiance");
+        write_image_entry(j, "irradiance.ktx2", *irr);
+        j.value("quantity", "E(n) / pi")
+            .value("method", irradiance_method_name(s.irradiance.method))
+            .value("source_size", s.irradiance.source_size)
+            .value("riemann_step", double(s.irradiance.riemann_step))
+            .value("blur_sigma", double(s.irradiance.blur_sigma))
+            .value("lowmip_size", s.irradiance.lowmip_size)
+            .value("sh9_windowing", s.irradiance.sh9_windowing)
+            .end_object();
+    }
+    if (const Image* lut = b.lut()) {
+        j.begin_object("brdf_lut");
+        write_image_entry(j, "brdf_lut.ktx2", *lut);
+        j.value("samples", s.lut.sample_count)
+            .value("visibility", s.lut.visibility == LutVisibility::height_correlated ? "smith height-correlated"
+                                                                                    : "smith schlick-ggx k = r^2/2")
+            .value("channels", "R = A (scale), G = B (bias), B = E_avg (multiscatter)")
+            .end_object();
+    }
+    j.begin_object("lights")
+        .value("split_level", d.light_split_level)
+        .value("extracted_power_fraction", d.extracted_power_fraction)
+        .begin_array("disks");
+    for (const DiskLight& l : b.lights()) {
+        j.begin_object().begin_array("direction");
+        for (int c = 0; c < 3; ++c) j.value({}, double(l.direction[c]));
+        j.end_array().value("angular_radius", double(l.angular_radius)).begin_array("radiance");
+        for (int c = 0; c < 3; ++c) j.value({}, double(l.radiance[c]));
+        j.end_array()
+            .value("solid_angle", double(l.solid_angle))
+            .value("texels", l.texels)
+            .value("power_fraction", l.power_fraction)
+            .end_object();
+    }
+    j.end_array().end_object();
+    j.value("preview_exposure", double(d.preview_exposure)).begin_array("passes");
+    double gpu = 0;
+    for (const PassTiming& t : d.timings) {
+        j.begin_object().value("name", t.name).value("gpu_time_ms", rounded(t.time_ms)).end_object();
+        gpu += t.time_ms;
+    }
+    j.end_array().value("gpu_time_ms", rounded(gpu)).value("wall_time_ms", rounded(d.wall_time_ms)).end_object();
+    return j.str();
+}
+
+std::string sh9_json(const std::vector<float>& sh9) {
+    JsonWriter j;
+    j.begin_object()
+        .value("basis", "real SH, bands 0-2, order (0,0) (1,-1) (1,0) (1,1) (2,-2) (2,-1) (2,0) (2,1) (2,2); "
+                        "Y_1,-1 = 0.4886 y, Y_10 = 0.4886 z, Y_11 = 0.4886 x")
+        .value("quantity", "radiance projections L_i = integral L Y_i dw (before the cosine kernel)")
+        .value("irradiance", "E(n)/pi = sum_i A_l w_l L_i Y_i(n) / pi, A = (pi, 2pi/3, pi/4)")
+        .value("window_h", double(sh9[9 * 4]))
+        .value("window", "w_l = (1 + cos(pi l / (2 h))) / 2; h = 0 means no window")
+        .begin_array("coefficients");
+    for (int i = 0; i < 9; ++i) {
+        j.begin_array();
+        for (int c = 0; c < 3; ++c) j.value("", double(sh9[size_t(i) * 4 + size_t(c)]));
+        j.end_array();
+    }
+    j.end_array().end_object();
+    return j.str();
+}
+
+}  // namespace
+
+const std::vector<const char*>& baked_environment_files() {
+    static const std::vector<const char*> names = {
+        "specular.ktx2",   "irradiance.ktx2", "brdf_lut.ktx2",   "brdf_lut.png", "environment.ktx2",
+        "environment.exr", "environment.hdr", "environment.png", "bake.json"};
+    return names;
+}
+
+Status BakedEnvironment::stage(OutputSet& outputs, const std::string& dir, const BakeStopFn& stop,
+                               std::vector<std::string>* notes) const try {
+    if (!environment_ || !cube_) return Error{dir + ": an empty BakedEnvironment cannot be saved"};
+    Context& context = *context_;
+    auto path = [&](const char* name) { return (fs::path(dir) / name).string(); };
+    for (const char* name : baked_environment_files())
+        if (notes && fs::exists(path(name))) notes->push_back("replacing " + path(name));
+    // Each file goes to its temporary; the previous bake stays whole until the commit.
+    auto staged = [&](const char* name) {
+        bake_safe_point(stop, "file");
+        return outputs.stage(path(name));
+    };
+    auto remove_old = [&](const char* name, const char* why) {
+        if (!fs::exists(path(name))) return;
+        if (notes) notes->push_back("removing " + path(name) + " (" + why + ")");
+        outputs.remove_with_commit(path(name));
+    };
+    const Levels env_levels = read_levels(context, environment_, kBakedLayout);
+    const ImageDesc& e = environment_.desc();
+    std::vector<float> env(env_levels[0].size() / sizeof(float));
+    std::memcpy(env.data(), env_levels[0].data(), env.size() * sizeof(float));
+    for (const char* name : {"environment.exr", "environment.hdr"})
+        if (Status s = write_hdr_image(staged(name), e.width, e.height, env); !s) return s;
+    if (!preview_.empty()) {
+        if (Status s = write_ldr_image(staged("environment.png"), e.width, e.height, preview_); !s) return s;
+    }
+    auto ktx2 = [&](const char* name, const Image* image, const char* why_absent) -> Status {
+        if (!image) {
+            remove_old(name, why_absent);
+            return Ok{};
+        }
+        return write_ktx2(staged(name), to_ktx2(*image, read_levels(context, *image, kBakedLayout), metadata_.version));
+    };
+    if (Status s = ktx2("environment.ktx2", &cube_, ""); !s) return s;
+    if (Status s = ktx2("specular.ktx2", specular(), "this bake has no specular cube"); !s) return s;
+    if (Status s = ktx2("irradiance.ktx2", irradiance(), "this bake has no irradiance"); !s) return s;
+    if (Status s = ktx2("brdf_lut.ktx2", lut(), "this bake has no BRDF LUT"); !s) return s;
+    if (lut_) {
+        // LUT preview: A, B and E_avg lie in [0, 1]; shown linearly, roughness 0 on the top row.
+        const Levels levels = read_levels(context, lut_, kBakedLayout);
+        const bool half = lut_.desc().format == VK_FORMAT_R16G16B16A16_SFLOAT;
+        const size_t n = size_t(lut_.desc().width) * lut_.desc().height * 4;
+        std::vector<uint8_t> png(n);
+        for (size_t i = 0; i < n; ++i) {
+            float v;
+            if (half) {
+                uint16_t h;
+                std::memcpy(&h, levels[0].data() + i * 2, 2);
+                v = half_to_float(h);
+            } else {
+                std::memcpy(&v, levels[0].data() + i * 4, 4);
+            }
+            png[i] = i % 4 == 3 ? 255 : static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+        }
+        if (Status s = write_ldr_image(staged("brdf_lut.png"), lut_.desc().width, lut_.desc().height, png); !s)
+            return s;
+    } else {
+        remove_old("brdf_lut.png", "this bake has no BRDF LUT");
+    }
+    if (sh9_.empty()) remove_old("sh9.json", "this bake does not use spherical harmonics");
+    else if (Status s = write_text_file(staged("sh9.json"), sh9_json(sh9_)); !s) return s;
+    // bake.json last: the set's marker, its presence with a bake key marks a complete bake.
+    return write_text_file(staged("bake.json"), bake_json(*this));
+} catch (const BakeCancelled&) {
+    return Error{kBakeCancelled};
+} catch (const VulkanError& error) {
+    return Error{dir + ": reading the baked images back: " + error.what(), error.result()};
+}
+
+Status BakedEnvironment::save(const std::string& dir) const {
+    if (Status s = ensure_directory(dir); !s) return s;
+    OutputSet outputs;
+    if (Status s = stage(outputs, dir); !s) return s;
+    return outputs.commit();
+}
+
+}  // namespace facet

@@ -1,0 +1,339 @@
+// BakedEnvironment: what a bake owns, save -> load giving back the same texels exactly and
+// the metadata load needs, and a missing, truncated or mismatched file being an error that
+// names it. Also the rules of ibl/bake_rules.h and the JSON reader load() relies on.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <facet/gpu/transfer.h>
+#include <facet/graph/compiled_graph.h>
+#include <facet/graph/graph_run.h>
+#include <facet/ibl/bake_rules.h>
+#include <facet/ibl/baked_environment.h>
+#include <facet/reference/ibl_reference.h>
+#include <facet/shader/program_cache.h>
+#include "io/json_reader.h"
+#include "support/gpu_test.h"
+#include "support/output_files.h"
+
+namespace facet {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::vector<std::byte>> bytes_of(Context& context, const Image& image) {
+    std::vector<std::vector<std::byte>> out;
+    for (uint32_t m = 0; m < image.desc().mip_levels; ++m)
+        for (uint32_t layer = 0; layer < image.desc().array_layers; ++layer)
+            out.push_back(read_image(context, image, m, layer, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
+    return out;
+}
+
+std::string read_text(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+    std::ofstream(path, std::ios::binary) << text;
+}
+
+EnvironmentSource sun_source(uint32_t w, double sun, double diameter_deg = 6.0) {
+    const test::Equirect sky = test::sun_sky(w, w / 2, sun, diameter_deg, 40.0, 20.0);
+    EnvironmentSource s;
+    s.name = "sun sky";
+    s.image.rgba = sky.rgba;
+    s.image.width = s.width = s.image.source_width = s.source_width = sky.w;
+    s.image.height = s.height = s.image.source_height = s.source_height = sky.h;
+    s.content_hash = "sun" + std::to_string(sun);
+    return s;
+}
+
+BakeSettings small_settings() {
+    BakeSettings b;
+    b.ibl.irradiance.size = 8;
+    b.ibl.specular.sample_count = 64;
+    b.ibl.lut.size = 16;
+    b.ibl.lut.sample_count = 32;
+    return b;
+}
+
+class BakedEnvironmentTest : public test::GpuTest {
+protected:
+    Result<BakedEnvironment> bake(const EnvironmentSource& source, const BakeSettings& settings) {
+        ShaderCompiler compiler;
+        ProgramCache programs(ctx(), compiler);
+        return bake_environment(ctx(), programs, source, settings);
+    }
+    void expect_same(const BakedEnvironment& a, const BakedEnvironment& b) {
+        auto same = [&](const Image* x, const Image* y, const char* what) {
+            ASSERT_EQ(x == nullptr, y == nullptr) << what;
+            if (!x) return;
+            EXPECT_EQ(x->desc(), y->desc()) << what;
+            EXPECT_TRUE(bytes_of(ctx(), *x) == bytes_of(ctx(), *y)) << what << ": texels differ";
+        };
+        same(&a.environment(), &b.environment(), "environment");
+        same(&a.cube(), &b.cube(), "cube");
+        same(a.specular(), b.specular(), "specular");
+        same(a.irradiance(), b.irradiance(), "irradiance");
+        same(a.lut(), b.lut(), "lut");
+        const BakeMetadata &m = a.metadata(), &n = b.metadata();
+        EXPECT_EQ(m.bake_key, n.bake_key);
+        EXPECT_EQ(m.content_hash, n.content_hash);
+        EXPECT_EQ(m.roughness, n.roughness);
+        EXPECT_EQ(m.light_split_level, n.light_split_level);
+        EXPECT_EQ(m.settings.specular.levels, n.settings.specular.levels);
+        EXPECT_EQ(m.settings.irradiance.method, n.settings.irradiance.method);
+        EXPECT_EQ(m.warnings, n.warnings);
+        ASSERT_EQ(a.lights().size(), b.lights().size());
+        for (size_t i = 0; i < a.lights().size(); ++i) {
+            EXPECT_EQ(a.lights()[i].direction, b.lights()[i].direction);
+            EXPECT_EQ(a.lights()[i].radiance, b.lights()[i].radiance);
+            EXPECT_EQ(a.lights()[i].angular_radius, b.lights()[i].angular_radius);
+        }
+        for (size_t i = 0; i < a.sh9().size(); i += 4)
+            for (size_t c = 0; c < 3 && i / 4 < 9; ++c) EXPECT_EQ(a.sh9()[i + c], b.sh9()[i + c]);
+        if (!a.sh9().empty()) EXPECT_EQ(a.sh9()[36], b.sh9()[36]);
+    }
+};
+
+TEST_F(BakedEnvironmentTest, SaveThenLoadGivesTheSameTexelsWithExtractedLights) {
+    BakeSettings settings = small_settings();
+    settings.extract_lights = true;
+    settings.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    auto baked = bake(sun_source(256, 1e4, 3.0), settings);
+    ASSERT_TRUE(baked) << baked.error().message;
+    ASSERT_EQ(baked->lights().size(), 1u) << "the sun is extracted";
+    const uint32_t levels = baked->metadata().settings.specular.levels;
+    EXPECT_EQ(baked->metadata().light_split_level, light_split_level(baked->lights(), levels));
+    EXPECT_GT(baked->metadata().light_split_level, 0u);
+    EXPECT_EQ(baked->metadata().roughness.size(), levels);
+    EXPECT_FALSE(baked->metadata().timings.empty());
+    test::TempDir dir("baked_environment_lights");
+    ASSERT_TRUE(baked->save(dir.path.string()));
+    for (const char* name : baked_environment_files()) EXPECT_TRUE(fs::exists(dir / name)) << name;
+    auto loaded = BakedEnvironment::load(ctx(), dir.path.string());
+    ASSERT_TRUE(loaded) << loaded.error().message;
+    expect_same(*baked, *loaded);
+    auto key = saved_bake_key(dir.path.string());
+    ASSERT_TRUE(key) << key.error().message;
+    EXPECT_EQ(*key, baked->metadata().bake_key);
+    EXPECT_FALSE(saved_bake_key((dir / "nowhere").string()));
+    // The forward pass's inputs from either.
+    RenderGraph graph;
+    const IblInputs in = import_baked_environment(graph, *loaded, 0.5f);
+    EXPECT_TRUE(in.cube.valid() && in.specular.valid() && in.irradiance.valid() && in.lut.valid());
+    EXPECT_EQ(in.specular_levels, levels);
+    EXPECT_EQ(in.intensity, 0.5f);
+    EXPECT_NE(in.cube_sampler, VkSampler(VK_NULL_HANDLE));
+}
+
+TEST_F(BakedEnvironmentTest, SaveThenLoadGivesTheSameTexelsWithSh9InHalfFloat) {
+    BakeSettings settings = small_settings();
+    settings.ibl.irradiance.method = IrradianceMethod::sh9;
+    auto baked = bake(sun_source(64, 50.0), settings);
+    ASSERT_TRUE(baked) << baked.error().message;
+    ASSERT_EQ(baked->sh9().size(), 40u);
+    EXPECT_EQ(baked->specular()->desc().format, VK_FORMAT_R16G16B16A16_SFLOAT);
+    test::TempDir dir("baked_environment_sh9");
+    ASSERT_TRUE(baked->save(dir.path.string()));
+    EXPECT_TRUE(fs::exists(dir / "sh9.json"));
+    auto loaded = BakedEnvironment::load(ctx(), dir.path.string());
+    ASSERT_TRUE(loaded) << loaded.error().message;
+    expect_same(*baked, *loaded);
+    // Saving what was loaded gives the same KTX2 files, byte for byte.
+    test::TempDir again("baked_environment_sh9_again");
+    ASSERT_TRUE(loaded->save(again.path.string()));
+    for (const char* name : {"specular.ktx2", "irradiance.ktx2", "brdf_lut.ktx2", "environment.ktx2", "sh9.json"})
+        EXPECT_EQ(read_text(dir / name), read_text(again / name)) << name;
+}
+
+TEST_F(BakedEnvironmentTest, MissingTruncatedOrMismatchedFilesAreErrorsNamingThem) {
+    auto baked = bake(sun_source(64, 50.0), small_settings());
+    ASSERT_TRUE(baked) << baked.error().message;
+    test::TempDir dir("baked_environment_damage");
+    const std::string saved = (dir / "saved").string();
+    ASSERT_TRUE(baked->save(saved));
+    auto fresh = [&](const char* name) {
+        const fs::path copy = dir / name;
+        fs::remove_all(copy);
+        fs::copy(saved, copy);
+        return copy;
+    };
+    auto expect_error = [&](const fs::path& d, const std::string& file, const std::string& reason) {
+        auto loaded = BakedEnvironment::load(ctx(), d.string());
+        ASSERT_FALSE(loaded) << file;
+        EXPECT_NE(loaded.error().message.find((d / file).string()), std::string::npos) << loaded.error().message;
+        EXPECT_NE(loaded.error().message.find(reason), std::string::npos) << loaded.error().message;
+    };
+    ASSERT_TRUE(BakedEnvironment::load(ctx(), saved));
+    for (const char* file : {"specular.ktx2", "irradiance.ktx2", "brdf_lut.ktx2", "environment.ktx2",
+                             "environment.exr", "bake.json"}) {
+        const fs::path d = fresh("missing");
+        fs::remove(d / file);
+        auto loaded = BakedEnvironment::load(ctx(), d.string());
+        ASSERT_FALSE(loaded) << file;
+        EXPECT_NE(loaded.error().message.find(file), std::string::npos) << loaded.error().message;
+    }
+    {
+        const fs::path d = fresh("truncated");
+        fs::resize_file(d / "irradiance.ktx2", fs::file_size(d / "irradiance.ktx2") / 2);
+        auto loaded = BakedEnvironment::load(ctx(), d.string());
+        ASSERT_FALSE(loaded);
+        EXPECT_NE(loaded.error().message.find("irradiance.ktx2"), std::string::npos) << loaded.error().message;
+    }
+    {
+        // bake.json says the specular cube is another size than the file holds.
+        const fs::path d = fresh("mismatched");
+        std::string json = read_text(d / "bake.json");
+        const std::string entry = "\"file\": \"specular.ktx2\",\n    \"size\": 16";
+        const size_t at = json.find(entry);
+        ASSERT_NE(at, std::string::npos) << json;
+        json.replace(at, entry.size(), "\"file\": \"specular.ktx2\",\n    \"size\": 8");
+        write_text(d / "bake.json", json);
+        expect_error(d, "specular.ktx2", "size 16, but bake.json says 8");
+    }
+    {
+        // Another format than the one recorded.
+        const fs::path d = fresh("format");
+        std::string json = read_text(d / "bake.json");
+        const std::string entry = "\"file\": \"brdf_lut.ktx2\",\n    \"size\": 16,\n    \"mip_levels\": 1,\n    \"format\": \"R16G16B16A16_SFLOAT\"";
+        const size_t at = json.find(entry);
+        ASSERT_NE(at, std::string::npos) << json;
+        json.replace(at, entry.size(), "\"file\": \"brdf_lut.ktx2\",\n    \"size\": 16,\n    \"mip_levels\": 1,\n    \"format\": \"R32G32B32A32_SFLOAT\"");
+        write_text(d / "bake.json", json);
+        expect_error(d, "brdf_lut.ktx2", "format R16G16B16A16_SFLOAT, but bake.json says R32G32B32A32_SFLOAT");
+    }
+    {
+        const fs::path d = fresh("corrupt");
+        write_text(d / "bake.json", read_text(d / "bake.json").substr(0, 200));
+        expect_error(d, "bake.json", "JSON line");
+    }
+    {
+        const fs::path d = fresh("sizes");
+        std::string json = read_text(d / "bake.json");
+        const size_t at = json.find("\"width\": 64");
+        ASSERT_NE(at, std::string::npos);
+        json.replace(at, 11, "\"width\": 65");
+        write_text(d / "bake.json", json);
+        expect_error(d, "environment.exr", "bake.json says 65x32");
+    }
+}
+
+// The lower-level form: the bake's passes in the caller's graph, writing into the
+// caller's own images (here a LUT and a specular cube), texel for texel what
+// bake_environment keeps in RGBA32F.
+TEST_F(BakedEnvironmentTest, PassesWriteIntoTheCallersImages) {
+    const EnvironmentSource source = sun_source(64, 50.0);
+    BakeSettings settings = small_settings();
+    settings.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    auto baked = bake(source, settings);
+    ASSERT_TRUE(baked) << baked.error().message;
+    const IblSettings resolved = resolved_ibl_settings(settings.ibl, source);
+
+    const VkImageUsageFlags usage =
+        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    ImageDesc lut_desc;
+    lut_desc.width = lut_desc.height = resolved.lut.size;
+    ImageDesc spec_desc = baked->specular()->desc();
+    spec_desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    Image lut(ctx(), lut_desc, usage, "engine's lut");
+    Image specular(ctx(), spec_desc, usage, "engine's specular");
+    const ResourceState readable{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                                 VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+    ShaderCompiler compiler;
+    ProgramCache programs(ctx(), compiler);
+    IblBake ibl(ctx(), programs);
+    RenderGraph graph;
+    IblTargets targets;
+    targets.lut = graph.import_image("engine lut", {lut.handle(), lut_desc, {}, readable});
+    targets.specular = graph.import_image("engine specular", {specular.handle(), spec_desc, {}, readable});
+    auto images = ibl.add_passes(graph, source, resolved, {}, targets);
+    ASSERT_TRUE(images) << images.error().message;
+    CompiledGraph compiled = graph.compile();
+    GraphRun run(ctx(), compiled);
+    run.submit_and_wait();
+    EXPECT_TRUE(bytes_of(ctx(), lut) == bytes_of(ctx(), *baked->lut())) << "LUT";
+    EXPECT_TRUE(bytes_of(ctx(), specular) == bytes_of(ctx(), *baked->specular())) << "specular";
+
+    // An image of another size is refused, naming it.
+    RenderGraph wrong;
+    ImageDesc small = lut_desc;
+    small.width = small.height = resolved.lut.size / 2;
+    IblTargets bad;
+    bad.lut = wrong.import_image("engine lut", {lut.handle(), small, {}, readable});
+    auto refused = ibl.add_passes(wrong, source, resolved, {}, bad);
+    ASSERT_FALSE(refused);
+    EXPECT_NE(refused.error().message.find("the caller's brdf lut image is 8x8"), std::string::npos)
+        << refused.error().message;
+}
+
+TEST(BakeRules, WhatASceneNeedsAndTheSplitLevel) {
+    IblSettings requested;
+    SceneNeeds metals;
+    metals.diffuse = false;
+    metals.min_roughness = 0.4f;
+    const IblSettings s = ibl_settings_for_scene(requested, metals, false);
+    EXPECT_FALSE(s.want_irradiance) << "pure metals need no irradiance";
+    EXPECT_EQ(s.specular.min_roughness, 0.4f);
+    EXPECT_TRUE(ibl_settings_for_scene(requested, metals, true).want_irradiance) << "multiscatter reads it";
+    EXPECT_TRUE(ibl_settings_for_scene(requested, SceneNeeds{}, false).want_irradiance);
+    // Lookup: roughness r reads level r x (levels - 1).
+    EXPECT_FLOAT_EQ(specular_lookup_lod(0.5f, 6), 2.5f);
+    EXPECT_FLOAT_EQ(specular_lookup_lod(1.0f, 6), 5.0f);
+    EXPECT_FLOAT_EQ(specular_lookup_lod(1.0f, 1), 0.0f);
+    // Split: the first level whose alpha = roughness^2 reaches the widest light's radius.
+    EXPECT_EQ(light_split_level({}, 6), 0u);
+    DiskLight sun;
+    sun.angular_radius = 0.05f;  // alpha at level m of 6: (m/5)^2 = 0.04, 0.16: level 2
+    const std::vector<DiskLight> one{sun};
+    EXPECT_EQ(light_split_level(one, 6), 2u);
+    sun.angular_radius = 2.0f;  // wider than every lobe: the last level
+    EXPECT_EQ(light_split_level(std::vector<DiskLight>{sun}, 6), 6u);
+    // The key: any setting changes it, the same settings repeat it.
+    EnvironmentSource env;
+    env.content_hash = "abc";
+    env.width = 64;
+    env.height = 32;
+    BakeSettings b;
+    const std::string key = bake_key(env, b);
+    EXPECT_EQ(key.size(), 16u);
+    EXPECT_EQ(key, bake_key(env, b));
+    BakeSettings other = b;
+    other.extract_lights = true;
+    EXPECT_NE(key, bake_key(env, other));
+    other = b;
+    other.ibl.specular.levels = 5;
+    EXPECT_NE(key, bake_key(env, other));
+    env.content_hash = "abd";
+    EXPECT_NE(key, bake_key(env, b));
+}
+
+TEST(JsonReader, ReadsWhatTheWriterWritesAndNamesWhereItFails) {
+    auto doc = parse_json(R"({"a": [1, -2.5e3, true, null], "s": "x\"\\\n\u00e9\ud83d\ude00", "o": {"k": {}}})");
+    ASSERT_TRUE(doc) << doc.error().message;
+    const JsonValue* a = doc->find("a");
+    ASSERT_TRUE(a && a->is_array());
+    ASSERT_EQ(a->items().size(), 4u);
+    EXPECT_EQ(a->items()[1].number(), -2500.0);
+    EXPECT_TRUE(a->items()[2].boolean());
+    EXPECT_TRUE(a->items()[3].is_null());
+    EXPECT_EQ(doc->find("s")->string(), "x\"\\\n\xc3\xa9\xf0\x9f\x98\x80");
+    EXPECT_TRUE(doc->find("o")->find("k")->is_object());
+    EXPECT_EQ(doc->find("missing"), nullptr);
+    for (const char* bad : {"", "{", "{\"a\" 1}", "[1,]", "[1 2]", "\"open", "01x", "{\"a\": 1} x", "nul", "1e999"}) {
+        auto r = parse_json(bad);
+        EXPECT_FALSE(r) << bad;
+        if (!r) EXPECT_NE(r.error().message.find("JSON line 1, column"), std::string::npos) << r.error().message;
+    }
+    EXPECT_NE(parse_json("{\n\n  \"a\": x}").error().message.find("line 3, column 8"), std::string::npos)
+        << parse_json("{\n\n  \"a\": x}").error().message;
+    EXPECT_FALSE(parse_json(std::string(100, '[') + std::string(100, ']'))) << "nesting is bounded";
+}
+
+}  // namespace
+}  // namespace facet
