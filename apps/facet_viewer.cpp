@@ -27,6 +27,7 @@
 #include <facet/gpu/context.h>
 #include <facet/gpu/transfer.h>
 #include <facet/graph/compiled_graph.h>
+#include <facet/graph/graph_executor.h>
 #include <facet/graph/graph_run.h>
 #include <facet/io/image_io.h>
 #include <facet/render/camera.h>
@@ -189,6 +190,9 @@ int run(const Options& o) {
     controls.status = o.job.shader_dir.empty() ? "hot reload off (start with --shader-dir shaders)" : "";
     ProgramCache programs(context, compiler);
     FrameSync sync(context);
+    // One frame in flight (the fence below); the executor keeps each frame's images for
+    // the next, so steady frames create no image and allocate no memory.
+    GraphExecutor executor(context, 1);
     size_t step = 0;       // next script command
     int frames_left = 0;   // of the current "frames N"
     std::string screenshot;
@@ -363,12 +367,13 @@ int run(const Options& o) {
         }
         const auto frame_start = std::chrono::steady_clock::now();
         CompiledGraph compiled = graph.compile();
-        GraphRun run(context, compiled);
         vk_check(vkResetCommandBuffer(sync.cmd, 0), "vkResetCommandBuffer");
         VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
         begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
         vk_check(vkBeginCommandBuffer(sync.cmd, &begin), "vkBeginCommandBuffer");
-        run.record(sync.cmd);
+        auto recorded = executor.record(compiled, sync.cmd);
+        if (!recorded) throw std::runtime_error(recorded.error().message);
+        GraphRun& run = **recorded;
         vk_check(vkEndCommandBuffer(sync.cmd), "vkEndCommandBuffer");
         VkSemaphoreSubmitInfo wait{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
         wait.semaphore = sync.acquired;
@@ -417,6 +422,7 @@ int run(const Options& o) {
         ++frame;
     }
     vkDeviceWaitIdle(context.device());
+    executor.release();
     ui.reset();
     swapchain.reset();
     log("rendered " + std::to_string(frame) + " frames");
