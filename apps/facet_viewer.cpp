@@ -25,6 +25,7 @@
 #include "interrupt.h"
 #include "facet_viewer_options.h"
 #include <facet/gpu/context.h>
+#include <facet/gpu/memory.h>
 #include <facet/gpu/transfer.h>
 #include <facet/graph/compiled_graph.h>
 #include <facet/graph/graph_executor.h>
@@ -197,6 +198,10 @@ int run(const Options& o) {
     int frames_left = 0;   // of the current "frames N"
     std::string screenshot;
     int frame = 0;
+    // Device allocations and images made inside frames after the first (graph build to
+    // fence; screenshot frames, which export more, aside): zero while the frame keeps its
+    // shape (the executor reuses the images).
+    uint64_t later_allocations = 0, later_images = 0;
     double last = glfwGetTime();
     int exit_status = 0;
     while (!glfwWindowShouldClose(window)) {
@@ -320,6 +325,7 @@ int run(const Options& o) {
         settings.lights = controls.lights;
         settings.views.clear();
         if (controls.view != View::final_color) settings.views = {controls.view};
+        const AllocatorStats frame_begin = context.allocator().stats();
         RenderGraph graph;
         auto images = session->add_frame_passes(graph);
         if (!images) throw std::runtime_error(images.error().message);
@@ -404,6 +410,11 @@ int run(const Options& o) {
         vk_check(vkResetFences(context.device(), 1, &sync.done), "vkResetFences");
         if (presented != VK_SUCCESS && presented != VK_SUBOPTIMAL_KHR && presented != VK_ERROR_OUT_OF_DATE_KHR)
             throw std::runtime_error(std::string("vkQueuePresentKHR: ") + vk_result_name(presented));
+        if (frame > 0 && !capture) {
+            const AllocatorStats frame_end = context.allocator().stats();
+            later_allocations += frame_end.allocations_made - frame_begin.allocations_made;
+            later_images += frame_end.images_bound - frame_begin.images_bound;
+        }
         controls.frame_passes = run.timings();
         controls.frame_ms =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frame_start).count();
@@ -425,7 +436,8 @@ int run(const Options& o) {
     executor.release();
     ui.reset();
     swapchain.reset();
-    log("rendered " + std::to_string(frame) + " frames");
+    log("rendered " + std::to_string(frame) + " frames (after the first: " + std::to_string(later_allocations) +
+        " device allocations, " + std::to_string(later_images) + " images created)");
     return exit_status;
 }
 

@@ -72,6 +72,8 @@ void GraphRun::release_into(GraphResourcePool& pool) {
 }
 
 void GraphRun::allocate(GraphResourcePool* pool) {
+    // Kept for timings(), which a host reads after its fence, when the graph may be gone.
+    for (const CompiledPass& cp : compiled_->passes) pass_names_.push_back(compiled_->graph->passes()[cp.pass].name);
     // Sizes no device holds fail here, by name, rather than half way through allocating.
     if (Status fits = check_graph_fits(context_, *compiled_); !fits)
         throw VulkanError(VK_ERROR_OUT_OF_DEVICE_MEMORY, "render graph: " + fits.error().message);
@@ -297,15 +299,15 @@ void GraphRun::submit_and_wait(const Progress& progress) {
 std::vector<PassTiming> GraphRun::timings() const {
     std::vector<PassTiming> out;
     if (!queries_ || !recorded_) return out;
-    std::vector<uint64_t> ticks(compiled_->passes.size() * 2);
+    std::vector<uint64_t> ticks(pass_names_.size() * 2);
     VkResult r = vkGetQueryPoolResults(context_.device(), queries_, 0, static_cast<uint32_t>(ticks.size()),
                                        ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
                                        VK_QUERY_RESULT_64_BIT);
     if (r != VK_SUCCESS) return out;
-    for (uint32_t i = 0; i < compiled_->passes.size(); ++i) {
+    for (uint32_t i = 0; i < pass_names_.size(); ++i) {
         const uint64_t begin = ticks[i * 2], end = ticks[i * 2 + 1];
         const double ms = end >= begin ? double(end - begin) * context_.timestamp_period_ns() * 1e-6 : 0.0;
-        out.push_back({compiled_->graph->passes()[compiled_->passes[i].pass].name, ms});
+        out.push_back({pass_names_[i], ms});
     }
     return out;
 }

@@ -280,6 +280,11 @@ Result<ForwardOutputs> ForwardRenderer::add_forward_pass(RenderGraph& graph, con
         return Error{"the forward pass's colour target '" + graph.resource(targets.color).name + "' is not a colour format"};
     if (!(aspect_of(depth.format) & VK_IMAGE_ASPECT_DEPTH_BIT))
         return Error{"the forward pass's depth target '" + graph.resource(targets.depth).name + "' has no depth"};
+    VkFormatProperties properties{};
+    vkGetPhysicalDeviceFormatProperties(context_.physical_device(), color.format, &properties);
+    if (!(properties.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT))
+        return Error{"the device cannot render to the colour target '" + graph.resource(targets.color).name +
+                     "' (format " + std::to_string(int(color.format)) + ")"};
     if (depth.width != color.width || depth.height != color.height || depth.samples != color.samples)
         return Error{"the forward pass's depth target differs from the colour target in size or samples"};
     if (targets.resolve.valid()) {

@@ -32,8 +32,9 @@ public:
     // A run of `compiled` in slot `frame` (< frames_in_flight), its resources taken over
     // from the slot's previous run where description and usage match; resources the new
     // shape does not use are freed. The run (owned here) stays valid until the slot is
-    // used again; `compiled` and its RenderGraph must outlive the run's use. Errors: a
-    // graph the device cannot hold, out of device memory. frame out of range: UsageError.
+    // used again; `compiled` and its RenderGraph must live until it is recorded (and
+    // while its images are looked up), not until the GPU is done. Errors: a graph the
+    // device cannot hold, out of device memory. frame out of range: UsageError.
     Result<GraphRun*> prepare(const CompiledGraph& compiled, uint32_t frame = 0);
     // prepare() and record every pass into the host's command buffer (recording).
     Result<GraphRun*> record(const CompiledGraph& compiled, VkCommandBuffer cmd, uint32_t frame = 0);

@@ -3,7 +3,8 @@
 // earlier run, see graph/graph_executor.h), every pass is recorded behind its barriers
 // with GPU timestamps around it, and the work is submitted (or left in a command buffer
 // the host submits). A GraphRun owns everything the recorded commands use, so it must
-// outlive their execution; the CompiledGraph (and its RenderGraph) must outlive the run.
+// outlive their execution. The CompiledGraph (and its RenderGraph) must live while the
+// run allocates, records and looks up images; timings() does not need them.
 #include <functional>
 #include <memory>
 #include <string>
@@ -79,8 +80,8 @@ public:
     using Progress = std::function<void(uint32_t done, uint32_t total, const std::string& pass)>;
     void submit_and_wait(const Progress& progress);
 
-    // GPU time of every executed pass, in order; call after the work completed.
-    // Empty when the queue has no timestamps.
+    // GPU time of every executed pass, in order; call after the work completed (the
+    // compiled graph may be gone by then). Empty when the queue has no timestamps.
     std::vector<PassTiming> timings() const;
 
     // Resources after the run (exported transients and imported ones).
@@ -115,6 +116,7 @@ private:
     std::vector<std::pair<ViewKey, VkImageView>> views_;
     VkQueryPool queries_ = VK_NULL_HANDLE;
     uint32_t query_count_ = 0;
+    std::vector<std::string> pass_names_;  // in execution order
     bool recorded_ = false;
 };
 
