@@ -429,6 +429,8 @@ int run(const Options& o) {
             log("saved " + screenshot);
             screenshot.clear();
         }
+        // Scripts and tests wait for this: every pipeline of the frame is built by now.
+        if (frame == 0) log("first frame shown");
         if (frames_left > 0) --frames_left;
         ++frame;
     }

@@ -144,14 +144,16 @@ TEST(FacetViewer, ShaderHotReloadShowsErrorsAndKeepsRunning) {
         return std::string((std::istreambuf_iterator<char>(in)), {});
     };
     auto wait_for = [&](const std::string& text) {
-        for (int i = 0; i < 400; ++i) {
+        for (int i = 0; i < 1600; ++i) {
             if (log_text().find(text) != std::string::npos) return true;
             std::this_thread::sleep_for(std::chrono::milliseconds(25));
         }
         return false;
     };
-    EXPECT_TRUE(wait_for("script: frames")) << log_text();
-    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    // The shader is broken only once the first frame has built its pipelines (a busy
+    // machine can take seconds to get there); the reload must keep the good ones.
+    EXPECT_TRUE(wait_for("first frame shown")) << log_text();
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
     const fs::path tonemap = shaders / "render" / "tonemap.comp";
     std::ifstream original_in(tonemap);
     const std::string original((std::istreambuf_iterator<char>(original_in)), {});
