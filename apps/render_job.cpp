@@ -161,6 +161,7 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
     }
     s->gpu_scene = std::make_unique<GpuScene>(context, s->scene);
     s->renderer = std::make_unique<ForwardRenderer>(context, *s->programs);
+    s->executor = std::make_unique<GraphExecutor>(context);
     return std::unique_ptr<RenderSession>(new RenderSession(std::move(s)));
 }
 
@@ -177,18 +178,19 @@ Result<RenderedImages> RenderSession::render_frame(bool pass_by_pass) {
     for (auto& [view, handle] : images->views) graph.export_image(handle, readable);
     CompiledGraph compiled = graph.compile();
     if (Status fits = check_graph_fits(context, compiled); !fits) return fits.error();
-    GraphRun run(context, compiled);
+    // The session's executor keeps the frame's images for the next frame of the same shape.
     std::vector<PassTiming> pass_wall;
-    if (pass_by_pass) {
-        auto last = std::chrono::steady_clock::now();
-        run.submit_and_wait([&](uint32_t, uint32_t, const std::string& pass) {
+    auto last = std::chrono::steady_clock::now();
+    GraphRun::Progress progress;
+    if (pass_by_pass)
+        progress = [&](uint32_t, uint32_t, const std::string& pass) {
             const auto now = std::chrono::steady_clock::now();
             pass_wall.push_back({pass, std::chrono::duration<double, std::milli>(now - last).count()});
             last = now;
-        });
-    } else {
-        run.submit_and_wait();
-    }
+        };
+    auto ran = s.executor->submit_and_wait(compiled, 0, progress);
+    if (!ran) return ran.error();
+    GraphRun& run = **ran;
 
     RenderedImages out;
     out.width = s.frame.width;

@@ -21,6 +21,8 @@
 namespace facet {
 
 class Context;
+class GpuScene;
+class ProgramCache;
 
 struct RenderJob {
     std::string model = "builtin:spheres";
@@ -81,6 +83,13 @@ public:
     Result<FrameImages> add_frame_passes(RenderGraph& graph);
     // Camera, size and display for the next frames.
     FrameSettings& frame_settings();
+    // The pieces a host's own graph uses with the lower-level passes
+    // (render/forward_renderer.h): the renderer (one frame slot), the scene on the GPU,
+    // the pipeline cache, and the baked images imported into `graph` (none without IBL).
+    ForwardRenderer& renderer();
+    const GpuScene& gpu_scene() const;
+    ProgramCache& programs();
+    std::optional<IblInputs> import_baked(RenderGraph& graph);
     // Every material's base colour, metalness, roughness and occlusion factors replaced
     // (textures, when kept, still multiply them, as in glTF), or the scene's own back.
     struct MaterialFactors {

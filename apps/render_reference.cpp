@@ -44,6 +44,10 @@ Result<FrameImages> RenderSession::add_frame_passes(RenderGraph& graph) {
 }
 
 FrameSettings& RenderSession::frame_settings() { return state_->frame; }
+ForwardRenderer& RenderSession::renderer() { return *state_->renderer; }
+const GpuScene& RenderSession::gpu_scene() const { return *state_->gpu_scene; }
+ProgramCache& RenderSession::programs() { return *state_->programs; }
+std::optional<IblInputs> RenderSession::import_baked(RenderGraph& graph) { return facet::import_ibl(*state_, graph); }
 
 const std::vector<std::string>& RenderSession::warnings() const { return state_->warnings; }
 

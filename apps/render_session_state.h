@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <facet/graph/compiled_graph.h>
+#include <facet/graph/graph_executor.h>
 #include <facet/graph/graph_run.h>
 #include "render_job.h"
 #include <facet/shader/program_cache.h>
@@ -29,6 +30,7 @@ struct RenderSession::State {
     std::vector<PassTiming> bake_timings;
     std::unique_ptr<GpuScene> gpu_scene;
     std::unique_ptr<ForwardRenderer> renderer;
+    std::unique_ptr<GraphExecutor> executor;  // frames of render_frame(), one at a time
     std::unique_ptr<ReferenceRenderer> reference;
     std::unique_ptr<Sampler> nearest;
     std::vector<float> original_texels;  // the environment before light extraction

@@ -5,8 +5,10 @@
 
 #include <cmath>
 #include <cstring>
+#include <memory>
 
 #include <facet/graph/compiled_graph.h>
+#include <facet/graph/graph_executor.h>
 #include <facet/graph/graph_run.h>
 #include <facet/graph/render_graph.h>
 #include <facet/gpu/pipeline.h>
@@ -65,6 +67,19 @@ constexpr const char* triangle_fragment = R"(#version 460
 layout(location = 0) out vec4 color;
 void main() { color = vec4(0.25, 0.5, 1.0, 1.0); }
 )";
+
+// Largest difference between add_pattern_then_transform's output and its closed form.
+double transform_error(const std::vector<float>& values, uint32_t w, uint32_t h) {
+    if (values.size() != size_t(w) * h * 4) return INFINITY;
+    double max_error = 0;
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) {
+            const float* t = &values[(size_t(y) * w + x) * 4];
+            const double expected[4] = {2.0 * x + 1, 2.0 * y + 1, 2 * (x * 0.5 + y * 0.25) + 1, 3.0};
+            for (int c = 0; c < 4; ++c) max_error = std::max(max_error, std::abs(t[c] - expected[c]));
+        }
+    return max_error;
+}
 
 const ResourceState readable{VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                              VK_ACCESS_2_TRANSFER_READ_BIT};
@@ -299,6 +314,73 @@ TEST_F(GraphGpuTest, HostRecordedCommandBuffer) {
     EXPECT_EQ(values[(5 * 16 + 3) * 4 + 1], 5.0f);
     EXPECT_EQ(run.timings().size(), 1u);
     EXPECT_THROW(run.record(VK_NULL_HANDLE), UsageError);
+}
+
+// Frames of the same shape in two slots: after each slot's first frame, no allocation and
+// no image creation (the allocator's running totals stay put), and each slot keeps its own
+// images (two frames in flight must not share them).
+TEST_F(GraphGpuTest, ExecutorSteadyFramesCreateNoImagesAndAllocateNothing) {
+    const uint32_t w = 64, h = 32;
+    GraphExecutor executor(ctx(), 2);
+    AllocatorStats settled{};
+    ImageHandle last;
+    std::vector<std::unique_ptr<RenderGraph>> graphs;  // each slot's graph outlives its run
+    std::vector<CompiledGraph> compiled(2);
+    for (uint32_t frame = 0; frame < 8; ++frame) {
+        const uint32_t slot = frame % 2;
+        auto graph = std::make_unique<RenderGraph>();
+        last = add_pattern_then_transform(*graph, w, h);
+        compiled[slot] = graph->compile();
+        if (graphs.size() < 2) graphs.push_back(std::move(graph));
+        else graphs[slot] = std::move(graph);
+        auto run = executor.submit_and_wait(compiled[slot], slot);
+        ASSERT_TRUE(run) << run.error().message;
+        if (frame == 1) settled = ctx().allocator().stats();
+    }
+    const AllocatorStats steady = ctx().allocator().stats();
+    EXPECT_EQ(steady.allocations_made, settled.allocations_made);
+    EXPECT_EQ(steady.images_bound, settled.images_bound);
+    EXPECT_EQ(steady.live_allocations, settled.live_allocations);
+    EXPECT_NE(executor.run(0)->image(last), executor.run(1)->image(last));
+    EXPECT_EQ(transform_error(read_rgba32f(*executor.run(1), last, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL), w, h), 0.0);
+
+    // Another shape in slot 0: its two images are new (the counter does count).
+    const uint64_t images_before = ctx().allocator().stats().images_bound;
+    RenderGraph other;
+    auto b = add_pattern_then_transform(other, w / 2, h);
+    CompiledGraph other_compiled = other.compile();
+    ASSERT_TRUE(executor.submit_and_wait(other_compiled, 0));
+    EXPECT_EQ(ctx().allocator().stats().images_bound, images_before + 2);
+    EXPECT_EQ(transform_error(read_rgba32f(*executor.run(0), b, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL), w / 2, h),
+              0.0);
+    EXPECT_THROW(executor.prepare(other_compiled, 2), UsageError);
+}
+
+// A result leaves the graph: the caller owns the image after the executor and its graph
+// are gone, and the slot's next frame creates a replacement.
+TEST_F(GraphGpuTest, ExecutorDetachesAnExportedImage) {
+    const uint32_t w = 32, h = 16;
+    Image kept;
+    {
+        GraphExecutor executor(ctx());
+        RenderGraph g;
+        auto b = add_pattern_then_transform(g, w, h);
+        CompiledGraph compiled = g.compile();
+        ASSERT_TRUE(executor.submit_and_wait(compiled));
+        auto detached = executor.detach_image(b);
+        ASSERT_TRUE(detached) << detached.error().message;
+        kept = std::move(*detached);
+        EXPECT_EQ(executor.run()->transient_image(b), nullptr);
+        EXPECT_FALSE(executor.detach_image(b));  // already taken
+        const uint64_t images_before = ctx().allocator().stats().images_bound;
+        ASSERT_TRUE(executor.submit_and_wait(compiled));
+        EXPECT_EQ(ctx().allocator().stats().images_bound, images_before + 1);
+    }
+    ASSERT_TRUE(kept);
+    auto bytes = read_image(ctx(), kept, 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    std::vector<float> values(bytes.size() / 4);
+    std::memcpy(values.data(), bytes.data(), bytes.size());
+    EXPECT_EQ(transform_error(values, w, h), 0.0);
 }
 
 }  // namespace

@@ -89,6 +89,7 @@ Allocation Allocator::allocate_dedicated(VkDeviceSize size, uint32_t type, VkBuf
         }
     }
     ++dedicated_count_;
+    ++allocations_made_;
     ++live_;
     dedicated_bytes_ += size;
     in_use_ += size;
@@ -119,6 +120,7 @@ Allocation Allocator::allocate(const VkMemoryRequirements& requirements, MemoryU
             block.free_ranges.erase(block.free_ranges.begin() + r);
             block.free_ranges.insert(block.free_ranges.begin() + r, pieces.begin(), pieces.end());
             ++block.live;
+            ++allocations_made_;
             ++live_;
             in_use_ += size;
             Allocation a;
@@ -209,6 +211,8 @@ Allocation Allocator::allocate_for(VkImage image, MemoryUsage usage) {
         free(a);
         throw VulkanError(res, "vkBindImageMemory");
     }
+    std::lock_guard lock(mutex_);
+    ++images_bound_;
     return a;
 }
 
@@ -276,6 +280,8 @@ AllocatorStats Allocator::stats() const {
     s.live_allocations = live_;
     s.bytes_reserved += dedicated_bytes_;
     s.bytes_in_use = in_use_;
+    s.allocations_made = allocations_made_;
+    s.images_bound = images_bound_;
     return s;
 }
 

@@ -55,7 +55,7 @@ uint32_t bytes_per_texel(VkFormat format) {
 
 Buffer::Buffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory,
                const std::string& name)
-    : context_(&context), size_(size) {
+    : context_(&context), size_(size), usage_(usage) {
     VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     info.size = size;
     info.usage = usage;
@@ -77,6 +77,7 @@ Buffer::Buffer(Buffer&& other) noexcept
     : context_(other.context_),
       buffer_(std::exchange(other.buffer_, VK_NULL_HANDLE)),
       size_(other.size_),
+      usage_(other.usage_),
       allocation_(std::exchange(other.allocation_, Allocation{})) {}
 
 Buffer& Buffer::operator=(Buffer&& other) noexcept {
@@ -85,6 +86,7 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
         context_ = other.context_;
         buffer_ = std::exchange(other.buffer_, VK_NULL_HANDLE);
         size_ = other.size_;
+        usage_ = other.usage_;
         allocation_ = std::exchange(other.allocation_, Allocation{});
     }
     return *this;

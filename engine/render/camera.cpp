@@ -7,6 +7,8 @@
 
 namespace facet {
 
+glm::vec3 CameraMatrices::position() const { return glm::vec3(glm::inverse(view)[3]); }
+
 glm::mat4 CameraView::view() const { return glm::lookAtRH(position, target, up); }
 
 glm::mat4 CameraView::projection(float aspect) const {

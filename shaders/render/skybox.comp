@@ -6,7 +6,11 @@
 // compute pass costs a small fraction of drawing the sky into every MSAA sample.
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0) uniform samplerCube environment;
+#ifdef FRAME_RGBA16F
+layout(binding = 1, rgba16f) uniform image2D frame;  // a host's half-float target
+#else
 layout(binding = 1, rgba32f) uniform image2D frame;
+#endif
 // Lights extracted from the environment (render/forward_interface.glsl's Light, type 3):
 // the sky shows them where the map was filled.
 struct Disk {

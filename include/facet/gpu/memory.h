@@ -37,6 +37,9 @@ struct AllocatorStats {
     uint32_t live_allocations = 0;
     VkDeviceSize bytes_reserved = 0;  // device memory held (blocks + dedicated)
     VkDeviceSize bytes_in_use = 0;
+    // Running totals since the allocator was made (for "a steady frame allocates nothing").
+    uint64_t allocations_made = 0;  // every allocation, sub-allocated or dedicated
+    uint64_t images_bound = 0;      // images given memory (one per VkImage Facet creates)
 };
 
 class Allocator {
@@ -88,6 +91,8 @@ private:
     uint32_t live_ = 0;
     VkDeviceSize dedicated_bytes_ = 0;
     VkDeviceSize in_use_ = 0;
+    uint64_t allocations_made_ = 0;
+    uint64_t images_bound_ = 0;
 };
 
 }  // namespace facet

@@ -48,6 +48,7 @@ public:
 
     VkBuffer handle() const { return buffer_; }
     VkDeviceSize size() const { return size_; }
+    VkBufferUsageFlags usage() const { return usage_; }
     // Host pointer (upload/readback memory only); call invalidate() before reading.
     void* mapped() const { return allocation_.mapped; }
     void flush() const;
@@ -59,6 +60,7 @@ private:
     Context* context_ = nullptr;
     VkBuffer buffer_ = VK_NULL_HANDLE;
     VkDeviceSize size_ = 0;
+    VkBufferUsageFlags usage_ = 0;
     Allocation allocation_;
 };
 

@@ -1,8 +1,10 @@
 #pragma once
-// Executing a compiled graph: physical resources are allocated, every pass is recorded
-// behind its barriers with GPU timestamps around it, and the work is submitted (or left
-// in a command buffer the host submits). A GraphRun owns everything the recorded
-// commands use, so it must outlive their execution.
+// Executing a compiled graph: physical resources are allocated (or taken over from an
+// earlier run, see graph/graph_executor.h), every pass is recorded behind its barriers
+// with GPU timestamps around it, and the work is submitted (or left in a command buffer
+// the host submits). A GraphRun owns everything the recorded commands use, so it must
+// outlive their execution. The CompiledGraph (and its RenderGraph) must live while the
+// run allocates, records and looks up images; timings() does not need them.
 #include <functional>
 #include <memory>
 #include <string>
@@ -40,6 +42,16 @@ private:
     VkCommandBuffer cmd_;
 };
 
+// Physical resources a finished run hands to the next (GraphExecutor's frame slots):
+// images and buffers are taken over when their description and usage match, so a frame
+// of the same shape creates no image and allocates no memory.
+struct GraphResourcePool {
+    std::vector<Image> images;
+    std::vector<Buffer> buffers;
+    VkQueryPool queries = VK_NULL_HANDLE;
+    uint32_t query_count = 0;
+};
+
 struct PassTiming {
     std::string name;
     double time_ms = 0;
@@ -48,7 +60,13 @@ struct PassTiming {
 class GraphRun {
 public:
     GraphRun(Context& context, const CompiledGraph& compiled);
+    // Takes matching images, buffers and the query pool from `pool` (what is left there
+    // is the caller's to keep or free). The pool's resources must be idle.
+    GraphRun(Context& context, const CompiledGraph& compiled, GraphResourcePool& pool);
     ~GraphRun();
+    // Moves every transient resource and the query pool into `pool` (for the next run);
+    // the run is empty afterwards. Only once the recorded work has completed.
+    void release_into(GraphResourcePool& pool);
     GraphRun(const GraphRun&) = delete;
     GraphRun& operator=(const GraphRun&) = delete;
 
@@ -62,37 +80,43 @@ public:
     using Progress = std::function<void(uint32_t done, uint32_t total, const std::string& pass)>;
     void submit_and_wait(const Progress& progress);
 
-    // GPU time of every executed pass, in order; call after the work completed.
-    // Empty when the queue has no timestamps.
+    // GPU time of every executed pass, in order; call after the work completed (the
+    // compiled graph may be gone by then). Empty when the queue has no timestamps.
     std::vector<PassTiming> timings() const;
 
     // Resources after the run (exported transients and imported ones).
     VkImage image(ImageHandle image) const;
     VkBuffer buffer(BufferHandle buffer) const;
-    Image* transient_image(ImageHandle image);  // nullptr for imported images
+    Image* transient_image(ImageHandle image);  // nullptr for imported or detached images
     Buffer* transient_buffer(BufferHandle buffer);
+    // Takes an exported transient image out of the run: the caller owns it (in the layout
+    // the graph left it), and the next run of the same shape creates a new one. Throws
+    // UsageError for an imported, unused or already detached image.
+    Image detach_image(ImageHandle image);
 
 private:
     friend class PassContext;
-    struct ViewKey {
+    struct ViewKey {  // views of imported images (transient images cache their own)
         uint32_t physical;
         VkImageSubresourceRange range;
         VkImageViewType type;
     };
     VkImageView view(uint32_t resource, ImageRange range, VkImageViewType type);
     const ImageDesc& image_desc(uint32_t resource) const;
-    void allocate();
+    void allocate(GraphResourcePool* pool);
     void record_barriers(VkCommandBuffer cmd, const BarrierBatch& batch) const;
     void record_pass(VkCommandBuffer cmd, uint32_t index);
     VkImage physical_image(uint32_t physical) const;
     VkBuffer physical_buffer(uint32_t physical) const;
 
     Context& context_;
-    const CompiledGraph& compiled_;
+    const CompiledGraph* compiled_;
     std::vector<Image> images_;    // per physical image (empty for imported)
     std::vector<Buffer> buffers_;  // per physical buffer (empty for imported)
     std::vector<std::pair<ViewKey, VkImageView>> views_;
     VkQueryPool queries_ = VK_NULL_HANDLE;
+    uint32_t query_count_ = 0;
+    std::vector<std::string> pass_names_;  // in execution order
     bool recorded_ = false;
 };
 

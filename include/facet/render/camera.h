@@ -1,12 +1,21 @@
 #pragma once
-// Camera placement and projection: a look-at view (right-handed, +Y up, looking down
-// -Z in view space, as glTF) and a reversed-Z perspective for Vulkan's clip space
-// (y down, depth 1 at the near plane, 0 at infinity).
+// The camera the render passes take is a pair of matrices (an engine's own); CameraView,
+// a look-at view (right-handed, +Y up, looking down -Z in view space, as glTF) with a
+// reversed-Z perspective for Vulkan's clip space (y down, depth 1 at the near plane, 0
+// at infinity), is a helper that produces them.
 #include <glm/glm.hpp>
 
 #include <facet/scene/scene.h>
 
 namespace facet {
+
+// World -> view -> Vulkan clip space. The passes test depth GREATER_OR_EQUAL and clear it
+// to 0, so `projection` must be reversed Z (near plane at depth 1, far at 0 or infinity).
+struct CameraMatrices {
+    glm::mat4 view{1.0f};
+    glm::mat4 projection{1.0f};
+    glm::vec3 position() const;  // the camera's world position (from the inverse view)
+};
 
 struct CameraView {
     glm::vec3 position{0.0f, 0.0f, 3.0f};
@@ -18,6 +27,7 @@ struct CameraView {
     glm::mat4 view() const;
     // Infinite far plane, reversed Z.
     glm::mat4 projection(float aspect) const;
+    CameraMatrices matrices(float aspect) const { return {view(), projection(aspect)}; }
 };
 
 // Orbit placement around `target`: theta is the azimuth from +Z towards +X, phi the

@@ -1,10 +1,10 @@
 #pragma once
-// The forward PBR frame as render-graph passes: the forward pass (opaque and masked
-// primitives, then blended ones sorted back to front, into an MSAA HDR target resolved
-// at the end), the skybox composited under it (when on and an environment is given),
-// the display transform, and
-// one single-sample pass per requested view (AOV). Only what the frame needs is added:
-// no skybox when it is off, no IBL inputs without an environment.
+// The forward PBR frame as render-graph passes a host adds or leaves out: the forward
+// pass (opaque and masked primitives, then blended ones sorted back to front) into the
+// caller's colour and depth targets with the caller's matrices, the skybox composited
+// under it, the display transform (render/tonemap.h) and one single-sample pass per
+// component view (AOV). add_passes() composes them into the programs' frame. An engine
+// can stop at linear HDR: add_forward_pass() alone.
 #include <optional>
 #include <set>
 #include <string>
@@ -40,7 +40,7 @@ struct IblInputs {
 struct FrameSettings {
     uint32_t width = 1280, height = 720;
     uint32_t samples = 4;  // MSAA of the final colour (views are single-sample)
-    CameraView camera;
+    CameraView camera;               // add_passes only; the passes below take matrices
     DisplaySettings display;
     bool skybox = true;
     bool height_correlated = false;  // glTF's Smith visibility for punctual lights
@@ -62,20 +62,62 @@ struct FrameImages {
     std::vector<std::pair<View, ImageHandle>> views;
 };
 
+// Where the forward pass draws: images of the caller's graph (imported from a host
+// engine, or created in the graph). `color`: any format the device can render to, any
+// sample count; `depth`: a depth format, same size and samples. With `resolve` (single
+// sample, colour's format) the MSAA colour is resolved into it and not stored.
+struct ForwardTargets {
+    ImageHandle color;
+    ImageHandle depth;
+    ImageHandle resolve;     // optional
+    bool clear_color = true;  // to transparent black (alpha = coverage, as the skybox expects); else load
+    bool clear_depth = true;  // to 0 (reversed Z: infinitely far); else load
+    bool store_depth = true;  // keep the depth for the host's later passes
+};
+
+// The targets' new versions after the pass.
+struct ForwardOutputs {
+    ImageHandle color, depth, resolve;
+};
+
 class ForwardRenderer {
 public:
-    ForwardRenderer(Context& context, ProgramCache& programs);
+    // `frames_in_flight` slots of per-frame data (camera, lights, disks): the pass writes
+    // slot `frame` when it is recorded, so the host must have waited for the work last
+    // recorded with that slot (its frame fence) before recording the slot again. Every
+    // pass of one slot in one frame shares its camera and lights.
+    ForwardRenderer(Context& context, ProgramCache& programs, uint32_t frames_in_flight = 1);
     ~ForwardRenderer();
 
-    // The host-visible frame data written here is read when the graph runs, so one
-    // frame at a time per renderer.
-    Result<FrameImages> add_passes(RenderGraph& graph, const GpuScene& scene, const FrameSettings& settings,
-                                   const std::optional<IblInputs>& ibl);
+    uint32_t frames_in_flight() const { return static_cast<uint32_t>(slots_.size()); }
 
-    // Composites the environment under `hdr` (RGBA32F, alpha = coverage) as seen by the
-    // frame's camera; returns the new version of `hdr`.
+    // The programs' frame: Facet's own RGBA32F MSAA target resolved to `hdr`, the
+    // look-at camera of `settings`, then the skybox (when on and an environment is
+    // given), the display transform and one pass per requested view.
+    Result<FrameImages> add_passes(RenderGraph& graph, const GpuScene& scene, const FrameSettings& settings,
+                                   const std::optional<IblInputs>& ibl, uint32_t frame = 0);
+
+    // The forward pass alone into the caller's targets, with the caller's matrices;
+    // `settings` gives the lights and the shading options (its size, samples, camera,
+    // skybox, display and views are not used). Linear HDR out: nothing after it.
+    Result<ForwardOutputs> add_forward_pass(RenderGraph& graph, const GpuScene& scene, const FrameSettings& settings,
+                                            const CameraMatrices& camera, const ForwardTargets& targets,
+                                            const std::optional<IblInputs>& ibl, uint32_t frame = 0);
+
+    // Composites the environment (and the extracted lights of `settings`) under `hdr`
+    // (RGBA32F or RGBA16F, storage-capable, alpha = coverage) as seen by `camera`;
+    // returns the new version of `hdr`.
     Result<ImageHandle> add_skybox_pass(RenderGraph& graph, ImageHandle hdr, const FrameSettings& settings,
-                                        const IblInputs& ibl);
+                                        const CameraMatrices& camera, const IblInputs& ibl, uint32_t frame = 0);
+    // The same with the look-at camera of `settings` (its width and height give the aspect).
+    Result<ImageHandle> add_skybox_pass(RenderGraph& graph, ImageHandle hdr, const FrameSettings& settings,
+                                        const IblInputs& ibl, uint32_t frame = 0);
+
+    // One component view (an AOV) of the scene into a new single-sample RGBA32F image of
+    // settings.width x height; returns it.
+    Result<ImageHandle> add_view_pass(RenderGraph& graph, const GpuScene& scene, View view,
+                                      const FrameSettings& settings, const CameraMatrices& camera,
+                                      const std::optional<IblInputs>& ibl, uint32_t frame = 0);
 
     // Pipeline variants created so far (each a distinct feature set).
     size_t pipeline_variants() const { return variants_.size(); }
@@ -85,13 +127,31 @@ private:
         std::vector<uint32_t> opaque;  // instance indices
         std::vector<uint32_t> blend;   // back to front
     };
+    struct Target {
+        VkFormat color = VK_FORMAT_UNDEFINED, depth = VK_FORMAT_UNDEFINED;
+        VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+    };
+    // Per-frame buffers of one slot, host-visible, written when a pass is recorded and
+    // grown (never shrunk) when a frame has more lights than they hold.
+    struct Slot {
+        Buffer frame, lights, sky_disks;
+    };
     Result<const Pipeline*> material_pipeline(const GpuScene& scene, uint32_t material, View view,
-                                              VkSampleCountFlagBits samples, bool ibl, const FrameSettings& settings);
-    DrawList draw_list(const GpuScene& scene, const CameraView& camera) const;
+                                              const Target& target, bool ibl, const FrameSettings& settings);
+    Result<std::vector<const Pipeline*>> pipelines(const GpuScene& scene, View view, const Target& target,
+                                                   bool ibl, const FrameSettings& settings);
+    DrawList draw_list(const GpuScene& scene, glm::vec3 camera_position) const;
+    // Adds one graphics pass drawing every instance with `pipelines` (shared by the
+    // forward pass and the views).
+    ForwardOutputs add_draw_pass(RenderGraph& graph, const std::string& name, const GpuScene& scene,
+                                 const FrameSettings& settings, const CameraMatrices& camera,
+                                 const ForwardTargets& targets, const std::optional<IblInputs>& ibl,
+                                 std::vector<const Pipeline*> pipelines, uint32_t frame);
+    Slot& slot(uint32_t frame);
 
     Context& context_;
     ProgramCache& programs_;
-    Buffer frame_, lights_, sky_disks_;
+    std::vector<Slot> slots_;
     Sampler nearest_, lut_sampler_;
     std::set<std::string> variants_;
 };

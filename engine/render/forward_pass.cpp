@@ -1,0 +1,325 @@
+// The forward pass: pipelines per material feature set, the draw order, and one graphics
+// pass drawing the scene into the caller's targets with the caller's matrices. The
+// frame's camera and lights are written into the slot's buffers when the pass is
+// recorded, not when the graph is built.
+#include <facet/render/forward_renderer.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include <facet/gpu/context.h>
+#include <facet/gpu/pipeline.h>
+#include <facet/graph/graph_run.h>
+#include <facet/render/gpu_scene.h>
+#include <facet/shader/program_cache.h>
+#include "render/forward_data.h"
+
+namespace facet {
+using namespace forward;
+
+namespace {
+
+const std::vector<VkDescriptorType>& forward_bindings() {
+    static const std::vector<VkDescriptorType> b = {
+        VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,         VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+        VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,         VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+    return b;
+}
+
+VkSamplerCreateInfo clamped_linear() {
+    VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    info.magFilter = info.minFilter = VK_FILTER_LINEAR;
+    info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    return info;
+}
+
+}  // namespace
+
+ForwardRenderer::ForwardRenderer(Context& context, ProgramCache& programs, uint32_t frames_in_flight)
+    : context_(context),
+      programs_(programs),
+      nearest_(context, VK_FILTER_NEAREST, false, false, "nearest sampler"),
+      lut_sampler_(context, clamped_linear(), "brdf lut sampler") {
+    if (frames_in_flight == 0) throw UsageError("ForwardRenderer: frames_in_flight must be at least 1");
+    slots_.resize(frames_in_flight);
+    for (uint32_t f = 0; f < frames_in_flight; ++f) {
+        const std::string n = " (frame slot " + std::to_string(f) + ")";
+        Slot& s = slots_[f];
+        s.frame = Buffer(context, sizeof(FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUsage::upload,
+                         "frame constants" + n);
+        // Room for a typical frame's lights up front, so that steady frames never grow them.
+        s.lights = Buffer(context, 16 * sizeof(LightData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::upload,
+                          "frame lights" + n);
+        s.sky_disks = Buffer(context, 8 * sizeof(LightData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                             MemoryUsage::upload, "skybox disks" + n);
+    }
+}
+
+ForwardRenderer::~ForwardRenderer() = default;
+
+ForwardRenderer::Slot& ForwardRenderer::slot(uint32_t frame) {
+    if (frame >= slots_.size())
+        throw UsageError("ForwardRenderer: frame slot " + std::to_string(frame) + " of " +
+                         std::to_string(slots_.size()));
+    return slots_[frame];
+}
+
+Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene, uint32_t material, View view,
+                                                           const Target& target, bool ibl,
+                                                           const FrameSettings& settings) {
+    const Material& m = scene.scene().materials.at(material);
+    std::vector<ShaderDefine> defines;
+    auto define_if = [&](bool on, const char* name) {
+        if (on) defines.push_back({name, "1"});
+    };
+    define_if(scene.has_texture(material, TextureSlot::base_color), "HAS_BASE_COLOR_MAP");
+    define_if(scene.has_texture(material, TextureSlot::metallic_roughness), "HAS_METALLIC_ROUGHNESS_MAP");
+    define_if(scene.has_texture(material, TextureSlot::normal), "HAS_NORMAL_MAP");
+    define_if(scene.has_texture(material, TextureSlot::occlusion), "HAS_OCCLUSION_MAP");
+    define_if(scene.has_texture(material, TextureSlot::emissive), "HAS_EMISSIVE_MAP");
+    define_if(m.alpha_mode == AlphaMode::mask, "ALPHA_MASK");
+    const bool blend = m.alpha_mode == AlphaMode::blend && view == View::final_color;
+    define_if(blend, "ALPHA_BLEND");
+    define_if(m.double_sided, "DOUBLE_SIDED");
+    define_if(ibl, "USE_IBL");
+    define_if(settings.height_correlated, "HEIGHT_CORRELATED");
+    define_if(ibl && settings.multiscatter, "MULTISCATTER");
+    define_if(ibl && settings.dominant_direction, "DOMINANT_DIRECTION");
+    defines.push_back({"VIEW", std::to_string(int(view))});
+
+    Pipeline::GraphicsDesc desc;
+    desc.bindings = forward_bindings();
+    desc.push_constant_bytes = sizeof(DrawConstants);
+    desc.color_formats = {target.color};
+    desc.depth_format = target.depth;
+    desc.samples = target.samples;
+    desc.cull = m.double_sided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
+    desc.vertex_bindings = {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+    desc.vertex_attributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
+                              {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
+                              {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
+                              {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)}};
+    desc.depth_test = true;
+    desc.depth_write = !blend;
+    desc.alpha_blend = blend;
+    auto pipeline = programs_.graphics("render/forward.vert", "render/forward.frag", desc, defines);
+    if (pipeline) {
+        std::string key = std::to_string(target.samples) + (m.double_sided ? "|two-sided" : "");
+        for (const ShaderDefine& d : defines) key += "|" + d.name + "=" + d.value;
+        variants_.insert(key);
+    }
+    return pipeline;
+}
+
+Result<std::vector<const Pipeline*>> ForwardRenderer::pipelines(const GpuScene& gpu, View view, const Target& target,
+                                                                bool ibl, const FrameSettings& s) {
+    const Scene& scene = gpu.scene();
+    std::vector<const Pipeline*> out(scene.instances.size());
+    for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+        const uint32_t material = scene.primitives.at(scene.instances[i].primitive).material;
+        auto p = material_pipeline(gpu, material, view, target, ibl, s);
+        if (!p) return p.error();
+        out[i] = *p;
+    }
+    return out;
+}
+
+ForwardRenderer::DrawList ForwardRenderer::draw_list(const GpuScene& gpu, glm::vec3 camera_position) const {
+    const Scene& scene = gpu.scene();
+    DrawList list;
+    std::vector<std::pair<float, uint32_t>> blended;
+    for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& instance = scene.instances[i];
+        const Primitive& p = scene.primitives.at(instance.primitive);
+        if (scene.materials.at(p.material).alpha_mode != AlphaMode::blend) {
+            list.opaque.push_back(i);
+            continue;
+        }
+        const glm::vec3 centre = glm::vec3(instance.world * glm::vec4(0.5f * (p.bounds_min + p.bounds_max), 1.0f));
+        blended.push_back({glm::length(centre - camera_position), i});
+    }
+    // Back to front, ties in declaration order, so that images are reproducible.
+    std::stable_sort(blended.begin(), blended.end(), [](auto& a, auto& b) { return a.first > b.first; });
+    for (auto& b : blended) list.blend.push_back(b.second);
+    return list;
+}
+
+ForwardOutputs ForwardRenderer::add_draw_pass(RenderGraph& graph, const std::string& name, const GpuScene& gpu,
+                                              const FrameSettings& s, const CameraMatrices& camera,
+                                              const ForwardTargets& targets, const std::optional<IblInputs>& ibl,
+                                              std::vector<const Pipeline*> pipelines, uint32_t frame) {
+    // What the slot's buffers will hold, computed now and written when the pass is recorded.
+    FrameData data{};
+    data.view_projection = camera.projection * camera.view;
+    data.camera_position = glm::vec4(camera.position(), 1.0f);
+    data.ibl = glm::vec4(ibl ? ibl->intensity : 0.0f, ibl ? float(ibl->specular_levels - 1) : 0.0f,
+                         float(s.environment_light_level), 0.0f);
+    const uint32_t disks = ibl ? uint32_t(s.environment_lights.size()) : 0u;
+    data.counts = glm::uvec4(uint32_t(s.lights.size()), disks, 0, 0);
+    std::vector<LightData> lights;
+    lights.reserve(s.lights.size() + disks);
+    for (const Light& l : s.lights) lights.push_back(light_data(l));
+    for (uint32_t i = 0; i < disks; ++i) lights.push_back(disk_data(s.environment_lights[i]));
+
+    const DrawList list = draw_list(gpu, camera.position());
+    std::vector<uint32_t> order = list.opaque;
+    order.insert(order.end(), list.blend.begin(), list.blend.end());
+
+    // The execute step is built before the setup step runs: it names the resources by
+    // the handles passed in (a view does not depend on the version).
+    ForwardOutputs out;
+    const bool resolve = targets.resolve.valid();
+    graph.add_graphics_pass(name, [&](PassBuilder& b) {
+        if (ibl) {
+            if (ibl->irradiance.valid()) b.sample(ibl->irradiance);
+            b.sample(ibl->specular);
+            b.sample(ibl->lut);
+        }
+        out.color = b.color_attachment(targets.color);
+        out.depth = b.depth_attachment(targets.depth);
+        if (resolve) out.resolve = b.color_attachment(targets.resolve);
+    }, [this, &gpu, frame, data, lights = std::move(lights), order = std::move(order), pipelines = std::move(pipelines),
+        ibl, color = targets.color, depth = targets.depth, resolve_target = targets.resolve, clear_color = targets.clear_color,
+        clear_depth = targets.clear_depth, store_depth = targets.store_depth](PassContext& pc) {
+        Slot& slot = slots_[frame];
+        std::memcpy(slot.frame.mapped(), &data, sizeof data);
+        slot.frame.flush();
+        write_lights(context_, slot.lights, lights, "frame lights");
+        const VkDeviceSize lights_bytes = std::max<size_t>(1, lights.size()) * sizeof(LightData);
+
+        const uint32_t w = pc.desc(color).width, h = pc.desc(color).height;
+        VkCommandBuffer cmd = pc.cmd();
+        VkRenderingAttachmentInfo c{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        c.imageView = pc.view(color, ImageRange::mip(0));
+        c.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        c.loadOp = clear_color ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
+        c.storeOp = resolve_target.valid() ? VK_ATTACHMENT_STORE_OP_DONT_CARE : VK_ATTACHMENT_STORE_OP_STORE;
+        c.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+        if (resolve_target.valid()) {
+            c.resolveMode = VK_RESOLVE_MODE_AVERAGE_BIT;
+            c.resolveImageView = pc.view(resolve_target, ImageRange::mip(0));
+            c.resolveImageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        }
+        VkRenderingAttachmentInfo d{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        d.imageView = pc.view(depth, ImageRange::mip(0));
+        d.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+        d.loadOp = clear_depth ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
+        d.storeOp = store_depth ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
+        d.clearValue.depthStencil = {0.0f, 0};  // reversed Z: 0 is infinitely far
+        VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        info.renderArea = {{0, 0}, {w, h}};
+        info.layerCount = 1;
+        info.colorAttachmentCount = 1;
+        info.pColorAttachments = &c;
+        info.pDepthAttachment = &d;
+        vkCmdBeginRendering(cmd, &info);
+        VkViewport viewport{0, 0, float(w), float(h), 0, 1};
+        VkRect2D scissor{{0, 0}, {w, h}};
+        vkCmdSetViewport(cmd, 0, 1, &viewport);
+        vkCmdSetScissor(cmd, 0, 1, &scissor);
+
+        const Scene& scene = gpu.scene();
+        const VkDeviceSize offset = 0;
+        const VkBuffer vertices = gpu.vertices();
+        vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &offset);
+        vkCmdBindIndexBuffer(cmd, gpu.indices(), 0, VK_INDEX_TYPE_UINT32);
+        // Bindings 4..6 are the IBL or black defaults.
+        VkImageView irradiance = gpu.black_cube(), specular = gpu.black_cube(), lut = gpu.black_2d();
+        VkSampler cube_sampler = gpu.default_sampler();
+        if (ibl) {
+            if (ibl->irradiance.valid()) irradiance = pc.view(ibl->irradiance);
+            specular = pc.view(ibl->specular);
+            lut = pc.view(ibl->lut);
+            cube_sampler = ibl->cube_sampler;
+        }
+        for (uint32_t i : order) {
+            const Primitive& p = scene.primitives[scene.instances[i].primitive];
+            const Pipeline* pipeline = pipelines[i];
+            pipeline->bind(cmd);
+            auto tex = [&](TextureSlot texture) {
+                GpuTexture t = gpu.texture(p.material, texture);
+                return DescriptorWrite::sampled_image(t.view, t.sampler);
+            };
+            const DescriptorWrite writes[] = {
+                DescriptorWrite::uniform_buffer(slot.frame.handle()),
+                DescriptorWrite::storage_buffer(slot.lights.handle(), 0, lights_bytes),
+                DescriptorWrite::storage_buffer(gpu.instances()),
+                DescriptorWrite::storage_buffer(gpu.materials()),
+                DescriptorWrite::sampled_image(irradiance, cube_sampler),
+                DescriptorWrite::sampled_image(specular, cube_sampler),
+                // clamped: NdotV near 1 must not wrap to NdotV = 0
+                DescriptorWrite::sampled_image(lut, lut_sampler_.handle()),
+                tex(TextureSlot::base_color),
+                tex(TextureSlot::metallic_roughness),
+                tex(TextureSlot::normal),
+                tex(TextureSlot::occlusion),
+                tex(TextureSlot::emissive)};
+            pipeline->push_descriptors(cmd, writes);
+            pipeline->push_constants(cmd, DrawConstants{i, p.material});
+            vkCmdDrawIndexed(cmd, p.index_count, 1, p.first_index, int32_t(p.vertex_offset), 0);
+        }
+        vkCmdEndRendering(cmd);
+    });
+    return out;
+}
+
+Result<ForwardOutputs> ForwardRenderer::add_forward_pass(RenderGraph& graph, const GpuScene& gpu,
+                                                         const FrameSettings& s, const CameraMatrices& camera,
+                                                         const ForwardTargets& targets,
+                                                         const std::optional<IblInputs>& ibl, uint32_t frame) {
+    slot(frame);  // a slot out of range is misuse, caught now rather than when recorded
+    if (!targets.color.valid() || !targets.depth.valid())
+        return Error{"the forward pass needs a colour and a depth target"};
+    const ImageDesc& color = graph.resource(targets.color).image_desc;
+    const ImageDesc& depth = graph.resource(targets.depth).image_desc;
+    if (aspect_of(color.format) != VK_IMAGE_ASPECT_COLOR_BIT)
+        return Error{"the forward pass's colour target '" + graph.resource(targets.color).name + "' is not a colour format"};
+    if (!(aspect_of(depth.format) & VK_IMAGE_ASPECT_DEPTH_BIT))
+        return Error{"the forward pass's depth target '" + graph.resource(targets.depth).name + "' has no depth"};
+    VkFormatProperties properties{};
+    vkGetPhysicalDeviceFormatProperties(context_.physical_device(), color.format, &properties);
+    if (!(properties.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT))
+        return Error{"the device cannot render to the colour target '" + graph.resource(targets.color).name +
+                     "' (format " + std::to_string(int(color.format)) + ")"};
+    if (depth.width != color.width || depth.height != color.height || depth.samples != color.samples)
+        return Error{"the forward pass's depth target differs from the colour target in size or samples"};
+    if (targets.resolve.valid()) {
+        const ImageDesc& r = graph.resource(targets.resolve).image_desc;
+        if (r.format != color.format || r.width != color.width || r.height != color.height ||
+            r.samples != VK_SAMPLE_COUNT_1_BIT || color.samples == VK_SAMPLE_COUNT_1_BIT)
+            return Error{"the resolve target must be single-sample, of the MSAA colour target's format and size"};
+    }
+    const Target target{color.format, depth.format, color.samples};
+    auto final_pipelines = pipelines(gpu, View::final_color, target, ibl.has_value(), s);
+    if (!final_pipelines) return final_pipelines.error();
+    return add_draw_pass(graph, "forward", gpu, s, camera, targets, ibl, std::move(*final_pipelines), frame);
+}
+
+Result<ImageHandle> ForwardRenderer::add_view_pass(RenderGraph& graph, const GpuScene& gpu, View view,
+                                                   const FrameSettings& s, const CameraMatrices& camera,
+                                                   const std::optional<IblInputs>& ibl, uint32_t frame) {
+    slot(frame);
+    if (s.width == 0 || s.height == 0) return Error{"the image size must be at least 1x1"};
+    ImageDesc desc;
+    desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    desc.width = s.width;
+    desc.height = s.height;
+    ImageDesc depth_desc = desc;
+    depth_desc.format = VK_FORMAT_D32_SFLOAT;
+    const Target target{desc.format, depth_desc.format, VK_SAMPLE_COUNT_1_BIT};
+    auto view_pipelines = pipelines(gpu, view, target, ibl.has_value(), s);
+    if (!view_pipelines) return view_pipelines.error();
+    ForwardTargets targets;
+    targets.color = graph.create_image(std::string("view ") + view_name(view), desc);
+    targets.depth = graph.create_image("view depth", depth_desc);
+    targets.store_depth = false;
+    return add_draw_pass(graph, std::string("view ") + view_name(view), gpu, s, camera, targets, ibl,
+                         std::move(*view_pipelines), frame)
+        .color;
+}
+
+}  // namespace facet
