@@ -11,6 +11,9 @@
 #include <facet/gpu/device_limits.h>
 #include <facet/gpu/transfer.h>
 #include <facet/graph/compiled_graph.h>
+#include <facet/cache/directory_cache.h>
+#include <facet/ibl/bake_rules.h>
+#include <facet/ibl/baked_environment.h>
 #include <facet/ibl/light_extraction.h>
 #include <facet/ibl/method_domain.h>
 #include <facet/render/frame_budget.h>
@@ -49,6 +52,47 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
                  " materials, " + std::to_string(scene->images.size()) + " textures");
     return create(context, job, std::move(scene).value(), progress);
 }
+
+namespace {
+
+// The session's image-based lighting: a saved bake (--ibl DIR), else the bake cache's entry
+// for this bake key (baked and saved into it on a miss), else a fresh bake.
+Result<BakedEnvironment> bake_for_session(Context& context, RenderSession::State& s,
+                                          const std::function<void(const std::string&)>& say) {
+    const RenderJob& job = s.job;
+    if (!job.ibl_dir.empty()) {
+        say("loading the bake in " + job.ibl_dir);
+        return BakedEnvironment::load(context, job.ibl_dir);
+    }
+    BakeSettings settings;
+    settings.ibl = ibl_settings_for_scene(job.ibl, scene_needs(s.scene), job.frame.multiscatter);
+    settings.extract_lights = job.extract_lights;
+    BakeCallbacks callbacks;
+    callbacks.progress = say;
+    callbacks.pass_done = [&](uint32_t done, uint32_t total, const std::string& pass) {
+        say("baking [" + std::to_string(done) + "/" + std::to_string(total) + "] " + pass);
+    };
+    auto bake = [&]() -> Result<BakedEnvironment> {
+        say("baking " + job.env + " (" + std::to_string(s.env->width) + "x" + std::to_string(s.env->height) + ")");
+        return bake_environment(context, *s.programs, *s.env, settings, callbacks);
+    };
+    if (job.bake_cache_dir.empty()) return bake();
+    BakeSettings resolved = settings;
+    resolved.ibl = resolved_ibl_settings(settings.ibl, *s.env);
+    const std::string key = bake_key(*s.env, resolved);
+    DirectoryCache cache({job.bake_cache_dir, job.bake_cache_max_bytes});
+    auto entry = cache.get_or_fill(key, [&](const std::string& dir) -> Status {
+        auto baked = bake();
+        if (!baked) return baked.error();
+        return baked->save(dir);
+    });
+    if (!entry) return Error{"bake cache " + job.bake_cache_dir + ": " + entry.error().message};
+    if (!entry->damage.empty()) say("bake cache: entry " + key + " was damaged (" + entry->damage + "); baked again");
+    say(std::string("bake cache: ") + (entry->built ? "stored " : "using ") + entry->path);
+    return BakedEnvironment::load(context, entry->path);
+}
+
+}  // namespace
 
 Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, const RenderJob& job, Scene scene,
                                                              const ProgressFn& progress) {
@@ -101,63 +145,26 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
             say(job.env + ": replaced " + std::to_string(s->env->image.sanitized_texels) +
                 " NaN, Inf or negative texels with 0");
         if (job.extract_lights) {
+            // The reference mode integrates the whole environment, lights included.
             if (Status st = materialize_environment(context, *s->programs, *s->env); !st) return st.error();
             s->original_texels = s->env->image.rgba;
-            LightExtraction extraction = extract_lights(s->env->image.rgba, s->env->width, s->env->height);
-            s->env->image.rgba = std::move(extraction.residual);
-            s->frame.environment_lights = extraction.lights;
-            say("extracted " + std::to_string(extraction.lights.size()) + " light(s) from " + job.env + ", " +
-                std::to_string(int(std::lround(100 * extraction.extracted_power_fraction))) + "% of its power");
-            for (const std::string& note : extraction.notes) say("light extraction: " + note);
         }
-        // Model no more than the scene needs: pure metals need no irradiance.
-        IblSettings requested = job.ibl;
-        const SceneNeeds needs = scene_needs(s->scene);
-        requested.want_irradiance = needs.diffuse || job.frame.multiscatter;
-        requested.specular.min_roughness = needs.min_roughness;
-        s->ibl_settings = resolved_ibl_settings(requested, *s->env);
-        if (!s->env->sky)
-            s->warnings = method_warnings(
-                environment_stats(s->original_texels.empty() ? s->env->image.rgba : s->original_texels,
-                                  s->env->width, s->env->height),
-                s->ibl_settings);
+        auto baked = bake_for_session(context, *s, say);
+        if (!baked) return baked.error();
+        s->baked = std::move(baked).value();
+        const BakeMetadata& m = s->baked->metadata();
+        s->frame.environment_lights = s->baked->lights();
+        s->frame.environment_light_level = m.light_split_level;
+        if (job.extract_lights) {
+            say("extracted " + std::to_string(s->baked->lights().size()) + " light(s) from " + job.env + ", " +
+                std::to_string(int(std::lround(100 * m.extracted_power_fraction))) + "% of its power");
+            for (const std::string& note : m.extraction_notes) say("light extraction: " + note);
+        }
+        for (const std::string& note : m.format_notes) say(note);
+        s->ibl_settings = m.settings;
+        s->warnings = m.warnings;
         for (const std::string& w : s->warnings) say("warning: " + w);
-        s->ibl_bake = std::make_unique<IblBake>(context, *s->programs);
-        // With extracted lights, specular levels whose lobe is narrower than twice the
-        // widest light come from the whole environment (their split sum sees the lights
-        // well); the disks take over from the first level that is wider.
-        SpecularSplit split;
-        EnvironmentSource whole;
-        if (!s->frame.environment_lights.empty()) {
-            float widest = 0.0f;
-            for (const DiskLight& d : s->frame.environment_lights) widest = std::max(widest, d.angular_radius);
-            const uint32_t levels = s->ibl_settings.specular.levels;
-            uint32_t level = 1;
-            while (level < levels) {
-                const float roughness = float(level) / float(std::max(levels - 1, 1u));
-                if (roughness * roughness >= widest) break;
-                ++level;
-            }
-            whole = *s->env;
-            whole.image.rgba = s->original_texels;
-            split = {&whole, level};
-            s->frame.environment_light_level = level;
-        }
-        RenderGraph graph;
-        auto images = s->ibl_bake->add_passes(graph, *s->env, s->ibl_settings, split);
-        if (!images) return images.error();
-        s->ibl_images = *images;
-        for (ImageHandle h : {s->ibl_images.cube, s->ibl_images.irradiance, s->ibl_images.specular, s->ibl_images.lut})
-            if (h.valid()) graph.export_image(h, sampled_by_fragments);
-        graph.export_image(s->ibl_images.equirect, readable);  // the reference mode reads the texels
-        s->bake_graph = graph.compile();
-        s->bake_run = std::make_unique<GraphRun>(context, s->bake_graph);
-        say("baking " + job.env + " (" + std::to_string(s->env->width) + "x" + std::to_string(s->env->height) +
-            ", cube " + std::to_string(s->ibl_settings.cube_size) + "^2)");
-        s->bake_run->submit_and_wait([&](uint32_t done, uint32_t total, const std::string& pass) {
-            say("baking [" + std::to_string(done) + "/" + std::to_string(total) + "] " + pass);
-        });
-        s->bake_timings = s->bake_run->timings();
+        s->bake_timings = m.timings;
     }
     s->gpu_scene = std::make_unique<GpuScene>(context, s->scene);
     s->renderer = std::make_unique<ForwardRenderer>(context, *s->programs);

@@ -43,6 +43,9 @@ struct RenderJob {
     bool extract_lights = false;  // suns and lamps out of the map, shaded as disk lights
     std::string shader_dir;       // read shaders from here (hot reload); empty: embedded (programs: FACET_SHADER_DIR)
     std::string shader_cache_dir; // on-disk SPIR-V cache (apps/shader_cache.h); empty: none
+    std::string ibl_dir;          // a saved bake (facet-bake's files) used instead of baking
+    std::string bake_cache_dir;   // bakes kept by bake key (facet/cache/directory_cache.h); empty: none
+    uint64_t bake_cache_max_bytes = 4ull << 30;
 };
 
 struct RenderedImages {

@@ -1,5 +1,9 @@
 #include "render_options.h"
 
+#include <cstdlib>
+
+#include <facet/cache/directory_cache.h>
+
 #include <cmath>
 #include <cstdio>
 
@@ -51,7 +55,12 @@ void add_render_options(cli::Parser& p) {
                                                std::to_string(GltfLimits{}.max_texture_size) + ")")
         .option("--ibl-size", "N", "cube face size of the bake (default: environment height / 2)")
         .option("--ibl-samples", "N", "GGX samples per texel for smooth specular levels (default 1024)")
-        .flag("--sanitize", "replace NaN, Inf and negative environment texels with 0 instead of failing");
+        .flag("--sanitize", "replace NaN, Inf and negative environment texels with 0 instead of failing")
+        .option("--ibl", "DIR", "render with the bake facet-bake saved in DIR instead of baking")
+        .option("--bake-cache", "DIR", "keep bakes in DIR, keyed by environment and settings, so the same\n"
+                                       "                          environment is baked once (default $XDG_CACHE_HOME/facet/bakes,\n"
+                                       "                          else ~/.cache/facet/bakes; at most 4 GiB, least recently used first)")
+        .flag("--no-bake-cache", "bake every run; keep nothing");
 }
 
 void parse_render_options(const cli::Parsed& a, RenderJob& j) {
@@ -132,6 +141,22 @@ void parse_render_options(const cli::Parsed& a, RenderJob& j) {
     if (a.has("--ibl-samples"))
         j.ibl.specular.sample_count = uint32_t(cli::parse_int(a.get("--ibl-samples"), "--ibl-samples", 1, 1 << 20));
     j.sanitize = a.has("--sanitize");
+    if (a.has("--ibl")) {
+        if (a.get("--ibl").empty()) throw std::invalid_argument("--ibl needs a directory");
+        j.ibl_dir = a.get("--ibl");
+    }
+    if (a.has("--no-bake-cache") && a.has("--bake-cache"))
+        throw std::invalid_argument("--bake-cache and --no-bake-cache exclude each other");
+    if (a.has("--bake-cache")) {
+        if (a.get("--bake-cache").empty()) throw std::invalid_argument("--bake-cache needs a directory");
+        j.bake_cache_dir = a.get("--bake-cache");
+    } else if (!a.has("--no-bake-cache")) {
+        // The library reads no environment: the program picks the folder (XDG base directories).
+        const char* xdg = std::getenv("XDG_CACHE_HOME");
+        const char* home = std::getenv("HOME");
+        auto dir = default_cache_directory(xdg ? xdg : "", home ? home : "");
+        if (dir) j.bake_cache_dir = dir.value() + "/bakes";  // else no cache: nowhere to keep it
+    }
 }
 
 }  // namespace facet

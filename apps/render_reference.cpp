@@ -14,21 +14,8 @@ namespace facet {
 // The baked images enter a frame's graph as imported resources, already readable by
 // shaders, and are left that way for the next frame.
 std::optional<IblInputs> import_ibl(RenderSession::State& s, RenderGraph& graph) {
-    if (!s.env) return std::nullopt;
-    auto import = [&](ImageHandle h, const char* name) -> ImageHandle {
-        if (!h.valid()) return {};
-        const Image* baked = s.bake_run->transient_image(h);
-        return graph.import_image(name, {baked->handle(), baked->desc(), sampled_by_fragments, sampled_by_fragments});
-    };
-    IblInputs in;
-    in.cube = import(s.ibl_images.cube, "environment cube");
-    in.irradiance = import(s.ibl_images.irradiance, "irradiance");
-    in.specular = import(s.ibl_images.specular, "specular");
-    in.lut = import(s.ibl_images.lut, "brdf lut");
-    in.specular_levels = s.ibl_settings.specular.levels;
-    in.cube_sampler = s.ibl_bake->cube_sampler().handle();
-    in.intensity = s.job.ibl_intensity;
-    return in;
+    if (!s.baked) return std::nullopt;
+    return import_baked_environment(graph, *s.baked, s.job.ibl_intensity);
 }
 
 std::vector<float> read_floats(Context& context, const Image& image, VkImageLayout layout) {
@@ -85,14 +72,14 @@ Result<RenderedImages> RenderSession::render_reference(const ReferenceSettings& 
     const auto start = std::chrono::steady_clock::now();
     if (!s.reference) {
         s.reference = std::make_unique<ReferenceRenderer>(context, *s.programs);
-        if (s.env) {
+        if (s.baked) {
             // The reference integrates the very texels the bake started from (before any
             // light extraction: the whole environment).
             std::vector<float> texels = s.original_texels;
             if (texels.empty())
-                texels = read_floats(context, *s.bake_run->transient_image(s.ibl_images.equirect),
-                                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-            s.reference->set_environment(texels, s.env->width, s.env->height, s.job.ibl_intensity);
+                texels = read_floats(context, s.baked->environment(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+            const BakeMetadata& m = s.baked->metadata();
+            s.reference->set_environment(texels, m.width, m.height, s.job.ibl_intensity);
         }
     }
     // The surface each pixel sees, one sample per pixel.

@@ -9,6 +9,7 @@
 #include <facet/graph/graph_executor.h>
 #include <facet/graph/graph_run.h>
 #include "render_job.h"
+#include <facet/ibl/baked_environment.h>
 #include <facet/shader/program_cache.h>
 
 namespace facet {
@@ -22,11 +23,8 @@ struct RenderSession::State {
     std::optional<EnvironmentSource> env;
     std::unique_ptr<ShaderCompiler> compiler;
     std::unique_ptr<ProgramCache> programs;
-    std::unique_ptr<IblBake> ibl_bake;
-    CompiledGraph bake_graph;
-    std::unique_ptr<GraphRun> bake_run;
-    IblImages ibl_images;
-    IblSettings ibl_settings;
+    std::optional<BakedEnvironment> baked;  // the image-based lighting (nothing without an environment)
+    IblSettings ibl_settings;               // as baked
     std::vector<PassTiming> bake_timings;
     std::unique_ptr<GpuScene> gpu_scene;
     std::unique_ptr<ForwardRenderer> renderer;

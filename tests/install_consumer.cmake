@@ -4,6 +4,7 @@ add_test(NAME install.consumer_builds_and_runs
   COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR}
           -DSOURCE_DIR=${CMAKE_CURRENT_SOURCE_DIR}/consumer
           -DPUBLIC_DIR=${PROJECT_SOURCE_DIR}/include
+          -DHOST_EXAMPLE_DIR=${PROJECT_SOURCE_DIR}/examples/host_engine
           -DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/consumer_work
           "-DCXX_FLAGS=${CMAKE_CXX_FLAGS}" "-DEXE_LINKER_FLAGS=${CMAKE_EXE_LINKER_FLAGS}"
           -P ${CMAKE_CURRENT_SOURCE_DIR}/consumer/run.cmake)

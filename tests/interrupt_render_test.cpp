@@ -21,7 +21,7 @@ std::vector<std::string> render_args(const fs::path& out, std::vector<std::strin
     std::vector<std::string> args = {FACET_RENDER_PATH, "--model", "builtin:sphere", "--env",  "builtin:sky",
                                      "--env-width",     "64",      "--ibl-size",     "16",     "--width",
                                      "64",              "--height", "64",            "--aov",  "normal,D",
-                                     "--out",           out.string()};
+                                     "--out",           out.string(), "--no-bake-cache"};  // every run bakes
     args.insert(args.end(), extra.begin(), extra.end());
     return args;
 }

@@ -22,6 +22,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -123,9 +126,11 @@ int main(int argc, char** argv) {
         for (uint32_t i = 0; i < in_flight; ++i) targets.push_back(host::create_targets(vk, args.width, args.height));
 
         uint64_t allocations_after_warmup = 0, images_after_warmup = 0;
+        std::vector<double> cpu_ms;  // graph build + compile + record of the steady frames
         for (uint32_t frame = 0; frame < args.frames; ++frame) {
             const uint32_t slot = frame % in_flight;
             host::begin_frame(vk, slot);  // waits for the slot's fence: its images and Facet's slot are free
+            const auto cpu_start = std::chrono::steady_clock::now();
             host::FrameTargets& t = targets[slot];
             facet::RenderGraph graph;
             const facet::IblInputs ibl = facet::import_baked_environment(graph, baked);
@@ -145,6 +150,8 @@ int main(int argc, char** argv) {
             need(facet::add_tonemap_pass(graph, programs, nearest, hdr, ldr, settings.display), "tonemap");
             const facet::CompiledGraph compiled = graph.compile();
             need(executor.record(compiled, vk.commands[slot], slot), "record");
+            if (frame >= in_flight)
+                cpu_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpu_start).count());
             host::submit_frame(vk, slot);
             if (frame + 1 == in_flight) {  // every slot has run once
                 const auto s = context->allocator().stats();
@@ -160,6 +167,11 @@ int main(int argc, char** argv) {
                     static_cast<unsigned long long>(s.allocations_made - allocations_after_warmup),
                     static_cast<unsigned long long>(s.images_bound - images_after_warmup));
 
+        if (!cpu_ms.empty()) {
+            std::sort(cpu_ms.begin(), cpu_ms.end());
+            std::printf("host_engine: steady frame CPU (graph build + compile + record), median of %zu: %.3f ms\n",
+                        cpu_ms.size(), cpu_ms[cpu_ms.size() / 2]);
+        }
         // 5. The last frame back to the host's memory.
         const std::vector<uint8_t> pixels = host::read_back(vk, targets[(args.frames - 1) % in_flight].ldr);
         if (auto written = facet::write_ldr_image(args.out, args.width, args.height, pixels); !written)

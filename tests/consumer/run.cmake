@@ -40,4 +40,15 @@ execute_process(COMMAND ${WORK_DIR}/build/facet_consumer RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "the consumer failed (${rc})")
 endif()
+# The host engine example builds against the installed package as well.
+execute_process(COMMAND ${CMAKE_COMMAND} -S ${HOST_EXAMPLE_DIR} -B ${WORK_DIR}/host_engine -G Ninja
+                        -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix
+                        "-DCMAKE_CXX_FLAGS=${CXX_FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${EXE_LINKER_FLAGS}"
+                RESULT_VARIABLE rc)
+if(rc EQUAL 0)
+  execute_process(COMMAND ${CMAKE_COMMAND} --build ${WORK_DIR}/host_engine RESULT_VARIABLE rc)
+endif()
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "building examples/host_engine against the installed package failed (${rc})")
+endif()
 file(REMOVE_RECURSE ${WORK_DIR})

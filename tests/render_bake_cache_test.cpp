@@ -1,0 +1,114 @@
+// facet-render with a saved bake (--ibl DIR) and with the bake cache (--bake-cache DIR):
+// the same image as a fresh bake, a second run that bakes nothing, a damaged entry
+// reported and rebuilt, two processes filling one entry, a missing bake named.
+#include <gtest/gtest.h>
+
+#include "support/output_files.h"
+#include "support/process.h"
+#include "support/spawn.h"
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+using facet::test::Ran;
+using facet::test::TempDir;
+
+const std::string scene = " --model builtin:sphere --env builtin:sky --env-width 64 --ibl-size 16 --width 64 --height 48";
+
+Ran render(const std::string& args) { return facet::test::run_command(std::string(FACET_RENDER_PATH) + scene + args); }
+
+std::vector<unsigned char> pixels(const fs::path& path) {
+    auto in = OIIO::ImageInput::open(path.string());
+    if (!in) return {};
+    const OIIO::ImageSpec& spec = in->spec();
+    std::vector<unsigned char> p(size_t(spec.width) * spec.height * spec.nchannels);
+    in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, p.data());
+    return p;
+}
+
+// Fraction of channel values that differ by more than `tolerance` (of 255).
+double differing(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b, int tolerance) {
+    if (a.size() != b.size() || a.empty()) return 1.0;
+    size_t off = 0;
+    for (size_t i = 0; i < a.size(); ++i) off += std::abs(int(a[i]) - int(b[i])) > tolerance;
+    return double(off) / double(a.size());
+}
+
+size_t count(const std::string& text, const std::string& what) {
+    size_t n = 0;
+    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+    return n;
+}
+
+}  // namespace
+
+TEST(RenderBakeCache, ASavedBakeRendersTheSameImageWithoutBaking) {
+    TempDir dir("render_ibl");
+    Ran fresh = render(" --no-bake-cache --out " + (dir / "fresh.png").string());
+    ASSERT_EQ(fresh.status, 0) << fresh.output;
+    EXPECT_GT(count(fresh.output, "baking ["), 0u) << fresh.output;
+    Ran bake = facet::test::run_command(std::string(FACET_BAKE_PATH) + " builtin:sky --width 64 --size 16 --out " +
+                                        (dir / "bake").string());
+    ASSERT_EQ(bake.status, 0) << bake.output;
+    Ran loaded = render(" --ibl " + (dir / "bake").string() + " --out " + (dir / "loaded.png").string());
+    ASSERT_EQ(loaded.status, 0) << loaded.output;
+    EXPECT_EQ(count(loaded.output, "baking ["), 0u) << loaded.output;
+    EXPECT_LE(differing(pixels(dir / "fresh.png"), pixels(dir / "loaded.png"), 1), 0.001);
+
+    // A bake that is not there: one error naming the file, nothing written.
+    Ran missing = render(" --ibl " + (dir / "nowhere").string() + " --out " + (dir / "missing.png").string());
+    EXPECT_EQ(missing.status, 1) << missing.output;
+    EXPECT_NE(missing.output.find((dir / "nowhere").string()), std::string::npos) << missing.output;
+    EXPECT_FALSE(fs::exists(dir / "missing.png"));
+}
+
+TEST(RenderBakeCache, TheSecondRunBakesNothingAndADamagedEntryIsRebuilt) {
+    TempDir dir("render_cache");
+    const std::string cache = " --bake-cache " + (dir / "cache").string();
+    Ran first = render(cache + " --out " + (dir / "first.png").string());
+    ASSERT_EQ(first.status, 0) << first.output;
+    EXPECT_NE(first.output.find("bake cache: stored"), std::string::npos) << first.output;
+    EXPECT_GT(count(first.output, "baking ["), 0u);
+    Ran second = render(cache + " --out " + (dir / "second.png").string());
+    ASSERT_EQ(second.status, 0) << second.output;
+    EXPECT_NE(second.output.find("bake cache: using"), std::string::npos) << second.output;
+    EXPECT_EQ(count(second.output, "baking ["), 0u) << second.output;
+    EXPECT_EQ(pixels(dir / "first.png"), pixels(dir / "second.png"));
+
+    // Damage the entry's specular cube: detected, reported, baked again, never used.
+    fs::path entry;
+    for (const auto& e : fs::directory_iterator(dir / "cache"))
+        if (e.is_directory() && e.path().filename().string()[0] != '.') entry = e.path();
+    ASSERT_FALSE(entry.empty());
+    fs::resize_file(entry / "specular.ktx2", fs::file_size(entry / "specular.ktx2") / 2);
+    Ran third = render(cache + " --out " + (dir / "third.png").string());
+    ASSERT_EQ(third.status, 0) << third.output;
+    EXPECT_NE(third.output.find("was damaged (specular.ktx2:"), std::string::npos) << third.output;
+    EXPECT_GT(count(third.output, "baking ["), 0u);
+    EXPECT_EQ(pixels(dir / "first.png"), pixels(dir / "third.png"));
+}
+
+TEST(RenderBakeCache, TwoProcessesFillingOneEntryBothFinishWithTheSameImage) {
+    TempDir dir("render_cache_race");
+    const std::string cache = (dir / "cache").string();
+    auto args = [&](const char* name) {
+        return std::vector<std::string>{FACET_RENDER_PATH, "--model", "builtin:sphere", "--env", "builtin:sky",
+                                        "--env-width", "64", "--ibl-size", "16", "--width", "64", "--height", "48",
+                                        "--bake-cache", cache, "--out", (dir / name).string()};
+    };
+    facet::test::Spawned a(args("a.png")), b(args("b.png"));
+    const auto end_a = a.wait(), end_b = b.wait();
+    ASSERT_EQ(end_a.status, 0) << a.output();
+    ASSERT_EQ(end_b.status, 0) << b.output();
+    // One baked and stored the entry; the other waited for it and used it.
+    EXPECT_EQ(count(a.output() + b.output(), "bake cache: stored"), 1u) << a.output() << b.output();
+    EXPECT_EQ(count(a.output() + b.output(), "bake cache: using"), 1u);
+    EXPECT_EQ(pixels(dir / "a.png"), pixels(dir / "b.png"));
+}
