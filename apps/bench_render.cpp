@@ -7,7 +7,7 @@
 #include <facet/gpu/context.h>
 #include <facet/io/atomic_file.h>
 #include "facet_bench_options.h"
-#include "render_job.h"
+#include <facet/render/render_job.h>
 #include "start_vulkan.h"
 
 namespace facet {

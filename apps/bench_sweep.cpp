@@ -18,7 +18,7 @@
 #include <facet/io/image_io.h>
 #include <facet/io/json_writer.h>
 #include "facet_bench_options.h"
-#include "render_job.h"
+#include <facet/render/render_job.h>
 #include "shader_cache.h"
 #include "start_vulkan.h"
 #include <facet/shader/program_cache.h>

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "light_spec.h"
 #include "shader_cache.h"
 
 namespace facet {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "cli.h"
-#include "render_job.h"
+#include <facet/render/render_job.h>
 
 namespace facet {
 

@@ -18,7 +18,7 @@
 #include <facet/io/image_io.h>
 #include <facet/io/json_writer.h>
 #include <facet/io/output_set.h>
-#include "render_job.h"
+#include <facet/render/render_job.h>
 #include "render_options.h"
 #include <facet/scene/builtin_scenes.h>
 #include <facet/scene/material_presets.h>

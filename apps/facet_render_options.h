@@ -4,7 +4,7 @@
 #include <optional>
 #include <string>
 
-#include "render_job.h"
+#include <facet/render/render_job.h>
 
 namespace facet {
 

@@ -32,7 +32,7 @@
 #include <facet/graph/graph_run.h>
 #include <facet/io/image_io.h>
 #include <facet/render/camera.h>
-#include "render_job.h"
+#include <facet/render/render_job.h>
 #include "render_options.h"
 #include "start_vulkan.h"
 #include <facet/render/tonemap.h>

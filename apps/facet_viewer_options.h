@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "render_job.h"
+#include <facet/render/render_job.h>
 
 namespace facet {
 

@@ -1,4 +1,5 @@
 #include "render_options.h"
+#include "light_spec.h"
 
 #include <cstdlib>
 

@@ -2,7 +2,7 @@
 // The options facet-render and facet-viewer share: model, environment, camera, display,
 // lights, presets and shading switches, parsed into a RenderJob.
 #include "cli.h"
-#include "render_job.h"
+#include <facet/render/render_job.h>
 #include "start_vulkan.h"
 
 namespace facet {

@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "render_job.h"
+#include <facet/render/render_job.h>
 #include <facet/scene/builtin_scenes.h>
 #include "support/gpu_test.h"
 

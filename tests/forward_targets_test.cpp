@@ -18,7 +18,7 @@
 #include <facet/gpu/transfer.h>
 #include <facet/graph/graph_executor.h>
 #include <facet/render/gpu_scene.h>
-#include "render_job.h"
+#include <facet/render/render_job.h>
 #include "support/gpu_test.h"
 #include "support/tiny_session.h"
 

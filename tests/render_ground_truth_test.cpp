@@ -13,7 +13,7 @@
 
 #include <facet/io/environment_image.h>
 #include <facet/io/image_io.h>
-#include "render_job.h"
+#include <facet/render/render_job.h>
 #include "support/gpu_test.h"
 #include "support/render_truth.h"
 

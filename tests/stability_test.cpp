@@ -15,7 +15,7 @@
 #include <facet/ibl/irradiance.h>
 #include <facet/ibl/method_domain.h>
 #include <facet/ibl/specular.h>
-#include "render_job.h"
+#include <facet/render/render_job.h>
 #include <facet/scene/builtin_scenes.h>
 #include "support/gpu_test.h"
 #include "support/ibl_gpu.h"

@@ -8,7 +8,7 @@
 #include <string>
 
 #include <facet/gpu/context.h>
-#include "render_job.h"
+#include <facet/render/render_job.h>
 #include "support/gpu_test.h"
 
 namespace facet::test {

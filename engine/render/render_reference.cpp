@@ -7,7 +7,7 @@
 #include <facet/gpu/context.h>
 #include <facet/gpu/transfer.h>
 #include <facet/render/gpu_scene.h>
-#include "render_session_state.h"
+#include "render/render_session_state.h"
 
 namespace facet {
 

@@ -1,7 +1,10 @@
 #pragma once
-// What facet-render (and facet-bench render) do: load a model and an environment, bake
-// the image-based lighting in one render graph, then draw the frame in a second graph
-// that imports the baked images (so a frame can be rendered again without baking).
+// A whole rendering job, as facet-render, facet-viewer and facet-bench run it: load a
+// model and an environment, get the image-based lighting (a saved bake, the bake cache's
+// entry, or a fresh bake: ibl/baked_environment.h), then draw frames through a long-lived
+// GraphExecutor that imports the baked images. The programs keep only their command
+// lines, file naming and UI; an engine uses the pieces (ForwardRenderer, GraphExecutor,
+// BakedEnvironment) directly.
 #include <array>
 #include <functional>
 #include <memory>
@@ -16,7 +19,6 @@
 #include <facet/render/reference_renderer.h>
 #include <facet/scene/gltf_loader.h>
 #include <facet/scene/scene.h>
-#include "light_spec.h"
 
 namespace facet {
 

@@ -1,5 +1,5 @@
 #pragma once
-// What a RenderSession holds (apps/render_job.h), shared by the files that implement it:
+// What a RenderSession holds (facet/render/render_job.h), shared by the files that implement it:
 // render_job.cpp (loading, baking, forward frames) and render_reference.cpp.
 #include <memory>
 #include <optional>
@@ -8,7 +8,7 @@
 #include <facet/graph/compiled_graph.h>
 #include <facet/graph/graph_executor.h>
 #include <facet/graph/graph_run.h>
-#include "render_job.h"
+#include <facet/render/render_job.h>
 #include <facet/ibl/baked_environment.h>
 #include <facet/shader/program_cache.h>
 

@@ -1,6 +1,6 @@
-#include "render_job.h"
+#include <facet/render/render_job.h>
 
-#include "render_session_state.h"
+#include "render/render_session_state.h"
 
 #include <algorithm>
 #include <chrono>
@@ -81,12 +81,16 @@ Result<BakedEnvironment> bake_for_session(Context& context, RenderSession::State
     resolved.ibl = resolved_ibl_settings(settings.ibl, *s.env);
     const std::string key = bake_key(*s.env, resolved);
     DirectoryCache cache({job.bake_cache_dir, job.bake_cache_max_bytes});
+    bool bake_failed = false;  // the bake's own error passes through; the cache's names the folder
     auto entry = cache.get_or_fill(key, [&](const std::string& dir) -> Status {
         auto baked = bake();
-        if (!baked) return baked.error();
+        if (!baked) {
+            bake_failed = true;
+            return baked.error();
+        }
         return baked->save(dir);
     });
-    if (!entry) return Error{"bake cache " + job.bake_cache_dir + ": " + entry.error().message};
+    if (!entry) return bake_failed ? entry.error() : Error{"bake cache " + job.bake_cache_dir + ": " + entry.error().message};
     if (!entry->damage.empty()) say("bake cache: entry " + key + " was damaged (" + entry->damage + "); baked again");
     say(std::string("bake cache: ") + (entry->built ? "stored " : "using ") + entry->path);
     return BakedEnvironment::load(context, entry->path);
