@@ -83,7 +83,9 @@ private:
     }
     void count_hold(int delta) {
         std::lock_guard guard(holds_mutex());
-        holds()[path_] += delta;
+        auto it = holds().emplace(path_, 0).first;
+        it->second += delta;
+        if (it->second <= 0) holds().erase(it);  // a long-lived viewer opens many entries
         shared_ = delta > 0;
     }
     int fd_ = -1;
