@@ -1,5 +1,5 @@
 # ctest driver: install Facet into a fresh prefix, build the consumer against it, run it.
-# -DBUILD_DIR=<facet build> -DSOURCE_DIR=<tests/consumer> -DWORK_DIR=<scratch>
+# -DBUILD_DIR=<facet build> -DSOURCE_DIR=<tests/install/consumer> -DWORK_DIR=<scratch>
 file(REMOVE_RECURSE ${WORK_DIR})
 execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix
                 RESULT_VARIABLE rc OUTPUT_QUIET)

@@ -1,12 +1,12 @@
-# find_package(facet) from an install prefix: install, build tests/consumer, run it
+# find_package(facet) from an install prefix: install, build tests/install/consumer, run it
 # (with this build's compiler flags, so that sanitizer builds link).
 add_test(NAME install.consumer_builds_and_runs
   COMMAND ${CMAKE_COMMAND} -DBUILD_DIR=${PROJECT_BINARY_DIR}
-          -DSOURCE_DIR=${CMAKE_CURRENT_SOURCE_DIR}/consumer
+          -DSOURCE_DIR=${CMAKE_CURRENT_LIST_DIR}/consumer
           -DPUBLIC_DIR=${PROJECT_SOURCE_DIR}/include
           -DHOST_EXAMPLE_DIR=${PROJECT_SOURCE_DIR}/examples/host_engine
           -DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/consumer_work
           "-DCXX_FLAGS=${CMAKE_CXX_FLAGS}" "-DEXE_LINKER_FLAGS=${CMAKE_EXE_LINKER_FLAGS}"
-          -P ${CMAKE_CURRENT_SOURCE_DIR}/consumer/run.cmake)
+          -P ${CMAKE_CURRENT_LIST_DIR}/consumer/run.cmake)
 set_tests_properties(install.consumer_builds_and_runs PROPERTIES LABELS install TIMEOUT 300
   ENVIRONMENT "FACET_VALIDATION=1")
