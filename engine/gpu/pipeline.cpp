@@ -12,52 +12,61 @@ namespace facet {
 namespace {
 
 struct ShaderModule {
-    VkDevice device;
+    VkDevice device = VK_NULL_HANDLE;
     VkShaderModule module = VK_NULL_HANDLE;
-    ShaderModule(Context& context, std::span<const uint32_t> spirv, const std::string& name)
-        : device(context.device()) {
-        if (spirv.empty()) throw UsageError("pipeline '" + name + "': empty SPIR-V");
-        VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-        info.codeSize = spirv.size_bytes();
-        info.pCode = spirv.data();
-        vk_check(vkCreateShaderModule(device, &info, nullptr, &module),
-                 ("vkCreateShaderModule " + name).c_str());
-        context.set_name(module, VK_OBJECT_TYPE_SHADER_MODULE, name);
+    ShaderModule() = default;
+    ShaderModule(const ShaderModule&) = delete;
+    ShaderModule& operator=(const ShaderModule&) = delete;
+    ~ShaderModule() {
+        if (module) vkDestroyShaderModule(device, module, nullptr);
     }
-    ~ShaderModule() { vkDestroyShaderModule(device, module, nullptr); }
 };
+
+Status create_module(Context& context, std::span<const uint32_t> spirv, const std::string& name, ShaderModule& out) {
+    VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    info.codeSize = spirv.size_bytes();
+    info.pCode = spirv.data();
+    out.device = context.device();
+    if (VkResult r = vkCreateShaderModule(out.device, &info, nullptr, &out.module); r != VK_SUCCESS)
+        return Error{name + ": vkCreateShaderModule failed (" + vk_result_name(r) + ")", r};
+    context.set_name(out.module, VK_OBJECT_TYPE_SHADER_MODULE, name);
+    return Ok{};
+}
+
+void require_spirv(std::span<const uint32_t> spirv, const std::string& name) {
+    if (spirv.empty()) throw UsageError("pipeline '" + name + "': empty SPIR-V");
+}
 
 }  // namespace
 
 // ---- PipelineLayout ----
 
-PipelineLayout::PipelineLayout(Context& context, std::span<const VkDescriptorType> bindings,
-                               VkShaderStageFlags stages, uint32_t push_constant_bytes,
-                               const std::string& name)
-    : context_(&context), stages_(stages) {
+Result<PipelineLayout> PipelineLayout::create(Context& context, const ShaderReflection& reflection,
+                                              const std::string& name) {
+    PipelineLayout l;
+    l.context_ = &context;
+    l.stages_ = reflection.stages;
     std::vector<VkDescriptorSetLayoutBinding> layout_bindings;
-    for (uint32_t i = 0; i < bindings.size(); ++i)
-        layout_bindings.push_back({i, bindings[i], 1, stages, nullptr});
+    for (const DescriptorBinding& b : reflection.bindings)
+        layout_bindings.push_back({b.binding, b.type, b.count, reflection.stages, nullptr});
     VkDescriptorSetLayoutCreateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     set_info.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
     set_info.bindingCount = static_cast<uint32_t>(layout_bindings.size());
     set_info.pBindings = layout_bindings.data();
-    vk_check(vkCreateDescriptorSetLayout(context.device(), &set_info, nullptr, &set_layout_),
-             ("vkCreateDescriptorSetLayout " + name).c_str());
-    context.set_name(set_layout_, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, name);
+    if (VkResult r = vkCreateDescriptorSetLayout(context.device(), &set_info, nullptr, &l.set_layout_); r != VK_SUCCESS)
+        return Error{name + ": vkCreateDescriptorSetLayout failed (" + vk_result_name(r) + ")", r};
+    context.set_name(l.set_layout_, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, name);
 
-    VkPushConstantRange push{stages, 0, push_constant_bytes};
+    VkPushConstantRange push{reflection.stages, 0, reflection.push_constant_bytes};
     VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     info.setLayoutCount = 1;
-    info.pSetLayouts = &set_layout_;
-    info.pushConstantRangeCount = push_constant_bytes ? 1 : 0;
+    info.pSetLayouts = &l.set_layout_;
+    info.pushConstantRangeCount = reflection.push_constant_bytes ? 1 : 0;
     info.pPushConstantRanges = &push;
-    VkResult r = vkCreatePipelineLayout(context.device(), &info, nullptr, &layout_);
-    if (r != VK_SUCCESS) {
-        reset();
-        throw VulkanError(r, "vkCreatePipelineLayout " + name);
-    }
-    context.set_name(layout_, VK_OBJECT_TYPE_PIPELINE_LAYOUT, name);
+    if (VkResult r = vkCreatePipelineLayout(context.device(), &info, nullptr, &l.layout_); r != VK_SUCCESS)
+        return Error{name + ": vkCreatePipelineLayout failed (" + vk_result_name(r) + ")", r};
+    context.set_name(l.layout_, VK_OBJECT_TYPE_PIPELINE_LAYOUT, name);
+    return l;
 }
 
 PipelineLayout::~PipelineLayout() { reset(); }
@@ -122,6 +131,8 @@ Pipeline::~Pipeline() { reset(); }
 
 Pipeline::Pipeline(Pipeline&& other) noexcept
     : context_(other.context_),
+      name_(std::move(other.name_)),
+      reflection_(std::move(other.reflection_)),
       layout_(std::move(other.layout_)),
       pipeline_(std::exchange(other.pipeline_, VK_NULL_HANDLE)),
       bind_point_(other.bind_point_) {}
@@ -130,6 +141,8 @@ Pipeline& Pipeline::operator=(Pipeline&& other) noexcept {
     if (this != &other) {
         reset();
         context_ = other.context_;
+        name_ = std::move(other.name_);
+        reflection_ = std::move(other.reflection_);
         layout_ = std::move(other.layout_);
         pipeline_ = std::exchange(other.pipeline_, VK_NULL_HANDLE);
         bind_point_ = other.bind_point_;
@@ -142,14 +155,22 @@ void Pipeline::reset() {
     pipeline_ = VK_NULL_HANDLE;
 }
 
-Pipeline Pipeline::compute(Context& context, std::span<const uint32_t> spirv,
-                           std::span<const VkDescriptorType> bindings, uint32_t push_constant_bytes,
-                           const std::string& name) {
+Result<Pipeline> Pipeline::compute(Context& context, std::span<const uint32_t> spirv, const std::string& name) {
+    require_spirv(spirv, name);
+    auto reflection = reflect_spirv(spirv, name);
+    if (!reflection) return reflection.error();
+    if (reflection->stages != VK_SHADER_STAGE_COMPUTE_BIT)
+        return Error{name + ": not a compute shader, cannot make a compute pipeline of it"};
     Pipeline p;
     p.context_ = &context;
+    p.name_ = name;
     p.bind_point_ = VK_PIPELINE_BIND_POINT_COMPUTE;
-    p.layout_ = PipelineLayout(context, bindings, VK_SHADER_STAGE_COMPUTE_BIT, push_constant_bytes, name);
-    ShaderModule module(context, spirv, name);
+    p.reflection_ = std::move(reflection).value();
+    auto layout = PipelineLayout::create(context, p.reflection_, name);
+    if (!layout) return layout.error();
+    p.layout_ = std::move(layout).value();
+    ShaderModule module;
+    if (Status s = create_module(context, spirv, name, module); !s) return s.error();
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
     info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
@@ -158,20 +179,37 @@ Pipeline Pipeline::compute(Context& context, std::span<const uint32_t> spirv,
     info.layout = p.layout_.handle();
     VkResult r = take_injected_fault(FaultSite::pipeline);
     if (r == VK_SUCCESS) r = vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline_);
-    vk_check(r, ("vkCreateComputePipelines " + name).c_str());
+    if (r != VK_SUCCESS) {
+        p.pipeline_ = VK_NULL_HANDLE;
+        return Error{name + ": vkCreateComputePipelines failed (" + vk_result_name(r) + ")", r};
+    }
     context.set_name(p.pipeline_, VK_OBJECT_TYPE_PIPELINE, name);
     return p;
 }
 
-Pipeline Pipeline::graphics(Context& context, const GraphicsDesc& desc, const std::string& name) {
+Result<Pipeline> Pipeline::graphics(Context& context, const GraphicsDesc& desc, const std::string& name) {
+    require_spirv(desc.vertex_spirv, name + " vertex");
+    require_spirv(desc.fragment_spirv, name + " fragment");
+    auto vertex_interface = reflect_spirv(desc.vertex_spirv, name + " vertex");
+    if (!vertex_interface) return vertex_interface.error();
+    auto fragment_interface = reflect_spirv(desc.fragment_spirv, name + " fragment");
+    if (!fragment_interface) return fragment_interface.error();
+    if (vertex_interface->stages != VK_SHADER_STAGE_VERTEX_BIT ||
+        fragment_interface->stages != VK_SHADER_STAGE_FRAGMENT_BIT)
+        return Error{name + ": a graphics pipeline needs a vertex and a fragment shader"};
+    auto reflection = merge_stages(*vertex_interface, *fragment_interface, name);
+    if (!reflection) return reflection.error();
     Pipeline p;
     p.context_ = &context;
+    p.name_ = name;
     p.bind_point_ = VK_PIPELINE_BIND_POINT_GRAPHICS;
-    p.layout_ = PipelineLayout(context, desc.bindings,
-                               VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-                               desc.push_constant_bytes, name);
-    ShaderModule vertex(context, desc.vertex_spirv, name + " vertex");
-    ShaderModule fragment(context, desc.fragment_spirv, name + " fragment");
+    p.reflection_ = std::move(reflection).value();
+    auto layout = PipelineLayout::create(context, p.reflection_, name);
+    if (!layout) return layout.error();
+    p.layout_ = std::move(layout).value();
+    ShaderModule vertex, fragment;
+    if (Status s = create_module(context, desc.vertex_spirv, name + " vertex", vertex); !s) return s.error();
+    if (Status s = create_module(context, desc.fragment_spirv, name + " fragment", fragment); !s) return s.error();
     VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
                                                  {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
     stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
@@ -243,33 +281,56 @@ Pipeline Pipeline::graphics(Context& context, const GraphicsDesc& desc, const st
     info.layout = p.layout_.handle();
     VkResult r = take_injected_fault(FaultSite::pipeline);
     if (r == VK_SUCCESS) r = vkCreateGraphicsPipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline_);
-    vk_check(r, ("vkCreateGraphicsPipelines " + name).c_str());
+    if (r != VK_SUCCESS) {
+        p.pipeline_ = VK_NULL_HANDLE;
+        return Error{name + ": vkCreateGraphicsPipelines failed (" + vk_result_name(r) + ")", r};
+    }
     context.set_name(p.pipeline_, VK_OBJECT_TYPE_PIPELINE, name);
     return p;
 }
 
 void Pipeline::bind(VkCommandBuffer cmd) const { vkCmdBindPipeline(cmd, bind_point_, pipeline_); }
 
+std::array<uint32_t, 3> Pipeline::workgroup_size() const {
+    if (bind_point_ != VK_PIPELINE_BIND_POINT_COMPUTE || !pipeline_)
+        throw UsageError("pipeline '" + name_ + "': only a compute pipeline has a workgroup size");
+    return reflection_.workgroup_size;
+}
+
 void Pipeline::push_descriptors(VkCommandBuffer cmd, std::span<const DescriptorWrite> writes) const {
+    if (writes.size() != reflection_.descriptor_count())
+        throw UsageError("pipeline '" + name_ + "': " + std::to_string(writes.size()) + " descriptors pushed, " +
+                         "the shaders declare " + std::to_string(reflection_.descriptor_count()));
     std::vector<VkWriteDescriptorSet> sets(writes.size());
-    for (uint32_t i = 0; i < writes.size(); ++i) {
-        VkWriteDescriptorSet& w = sets[i];
-        w = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        w.dstBinding = i;
-        w.descriptorCount = 1;
-        w.descriptorType = writes[i].type;
-        const bool is_buffer = writes[i].type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER ||
-                               writes[i].type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-        if (is_buffer)
-            w.pBufferInfo = &writes[i].buffer;
-        else
-            w.pImageInfo = &writes[i].image;
-    }
+    size_t i = 0;
+    for (const DescriptorBinding& binding : reflection_.bindings)
+        for (uint32_t element = 0; element < binding.count; ++element, ++i) {
+            const DescriptorWrite& write = writes[i];
+            if (write.type != binding.type)
+                throw UsageError("pipeline '" + name_ + "': binding " + std::to_string(binding.binding) + " ('" +
+                                 binding.name + "') is a " + descriptor_type_name(binding.type) + ", pushed a " +
+                                 descriptor_type_name(write.type));
+            VkWriteDescriptorSet& w = sets[i];
+            w = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            w.dstBinding = binding.binding;
+            w.dstArrayElement = element;
+            w.descriptorCount = 1;
+            w.descriptorType = write.type;
+            const bool is_buffer = write.type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER ||
+                                   write.type == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+            if (is_buffer)
+                w.pBufferInfo = &write.buffer;
+            else
+                w.pImageInfo = &write.image;
+        }
     context_->cmd_push_descriptor_set(cmd, bind_point_, layout_.handle(), 0,
                                       static_cast<uint32_t>(sets.size()), sets.data());
 }
 
 void Pipeline::push_constants(VkCommandBuffer cmd, const void* data, uint32_t bytes) const {
+    if (bytes != reflection_.push_constant_bytes)
+        throw UsageError("pipeline '" + name_ + "': " + std::to_string(bytes) + " bytes of push constants pushed, " +
+                         "the shaders' push-constant block is " + std::to_string(reflection_.push_constant_bytes));
     vkCmdPushConstants(cmd, layout_.handle(), layout_.stages(), 0, bytes, data);
 }
 

@@ -8,13 +8,12 @@ namespace facet {
 Result<ImageHandle> add_brdf_lut_passes(RenderGraph& graph, ProgramCache& programs, const BrdfLutSettings& settings,
                                         ImageHandle lut) {
     if (settings.sample_count == 0) return Error{"BRDF LUT: sample count must be at least 1"};
-    const VkDescriptorType storage[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
     struct Params {
         uint32_t sample_count, height_correlated;
     } params{settings.sample_count, settings.visibility == LutVisibility::height_correlated ? 1u : 0u};
-    auto split_sum = programs.compute("ibl/brdf_lut.comp", storage, sizeof(Params));
+    auto split_sum = programs.compute("ibl/brdf_lut.comp");
     if (!split_sum) return split_sum.error();
-    auto energy = programs.compute("ibl/brdf_lut_energy.comp", storage, 0);
+    auto energy = programs.compute("ibl/brdf_lut_energy.comp");
     if (!energy) return energy.error();
 
     ImageHandle scale_bias;
@@ -25,7 +24,9 @@ Result<ImageHandle> add_brdf_lut_passes(RenderGraph& graph, ProgramCache& progra
                                const DescriptorWrite writes[] = {DescriptorWrite::storage_image(pc.view(lut))};
                                p->push_descriptors(pc.cmd(), writes);
                                p->push_constants(pc.cmd(), params);
-                               vkCmdDispatch(pc.cmd(), group_count(d.width, 8), group_count(d.height, 8), 1);
+                               const auto local = p->workgroup_size();
+                               vkCmdDispatch(pc.cmd(), group_count(d.width, local[0]),
+                                             group_count(d.height, local[1]), 1);
                            });
     ImageHandle with_energy;
     graph.add_compute_pass("brdf lut energy", [&](PassBuilder& b) { with_energy = b.read_write_storage(scale_bias); },
@@ -33,7 +34,8 @@ Result<ImageHandle> add_brdf_lut_passes(RenderGraph& graph, ProgramCache& progra
                                p->bind(pc.cmd());
                                const DescriptorWrite writes[] = {DescriptorWrite::storage_image(pc.view(lut))};
                                p->push_descriptors(pc.cmd(), writes);
-                               vkCmdDispatch(pc.cmd(), group_count(pc.desc(lut).height, 64), 1, 1);
+                               // One invocation per row of the LUT.
+                               vkCmdDispatch(pc.cmd(), group_count(pc.desc(lut).height, p->workgroup_size()[0]), 1, 1);
                            });
     return with_energy;
 }

@@ -5,12 +5,14 @@
 
 namespace facet {
 
-void dispatch_cube(PassContext& pc, uint32_t n) { vkCmdDispatch(pc.cmd(), group_count(n, 8), group_count(n, 8), 6); }
+void dispatch_cube(PassContext& pc, const Pipeline& pipeline, uint32_t n) {
+    const auto local = pipeline.workgroup_size();
+    vkCmdDispatch(pc.cmd(), group_count(n, local[0]), group_count(n, local[1]), group_count(6, local[2]));
+}
 
 Result<CubeTexelList> add_cube_texel_list_pass(RenderGraph& graph, ProgramCache& programs, ImageHandle environment,
                                                uint32_t level, const std::string& name) {
-    const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
-    auto program = programs.compute("ibl/cube_texels.comp", bindings, sizeof(uint32_t));
+    auto program = programs.compute("ibl/cube_texels.comp");
     if (!program) return program.error();
     const ImageDesc& env = graph.resource(environment).image_desc;
     const uint32_t face = env.mip_width(level);
@@ -27,15 +29,14 @@ Result<CubeTexelList> add_cube_texel_list_pass(RenderGraph& graph, ProgramCache&
             DescriptorWrite::storage_buffer(pc.buffer(texels))};
         p->push_descriptors(pc.cmd(), writes);
         p->push_constants(pc.cmd(), block);
-        dispatch_cube(pc, face);
+        dispatch_cube(pc, *p, face);
     });
     return list;
 }
 
 Result<CubeTexelList> add_equirect_texel_list_pass(RenderGraph& graph, ProgramCache& programs, ImageHandle equirect,
                                                    uint32_t target_entries, const std::string& name) {
-    const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
-    auto program = programs.compute("ibl/equirect_texels.comp", bindings, sizeof(uint32_t));
+    auto program = programs.compute("ibl/equirect_texels.comp");
     if (!program) return program.error();
     const ImageDesc& d = graph.resource(equirect).image_desc;
     uint32_t block = 1;
@@ -53,7 +54,8 @@ Result<CubeTexelList> add_equirect_texel_list_pass(RenderGraph& graph, ProgramCa
                                           DescriptorWrite::storage_buffer(pc.buffer(texels))};
         p->push_descriptors(pc.cmd(), writes);
         p->push_constants(pc.cmd(), block);
-        vkCmdDispatch(pc.cmd(), group_count(bx, 8), group_count(by, 8), 1);
+        const auto local = p->workgroup_size();
+        vkCmdDispatch(pc.cmd(), group_count(bx, local[0]), group_count(by, local[1]), 1);
     });
     return list;
 }

@@ -11,6 +11,7 @@
 namespace facet {
 
 class PassContext;
+class Pipeline;
 class ProgramCache;
 
 struct CubeTexelList {
@@ -27,8 +28,8 @@ Result<CubeTexelList> add_cube_texel_list_pass(RenderGraph& graph, ProgramCache&
 Result<CubeTexelList> add_equirect_texel_list_pass(RenderGraph& graph, ProgramCache& programs, ImageHandle equirect,
                                                    uint32_t target_entries, const std::string& name);
 
-// 8x8 groups over every face of an n x n level.
-void dispatch_cube(PassContext& pc, uint32_t n);
+// `pipeline`'s workgroups over every face of an n x n level (z: the 6 faces).
+void dispatch_cube(PassContext& pc, const Pipeline& pipeline, uint32_t n);
 
 constexpr VkImageViewType cube_array_view = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
 

@@ -5,6 +5,7 @@
 #include <facet/gpu/resources.h>
 #include <facet/graph/graph_run.h>
 #include <facet/shader/program_cache.h>
+#include "ibl/cube_texel_list.h"
 
 namespace facet {
 
@@ -29,12 +30,9 @@ ImageDesc environment_cube_desc(uint32_t size, uint32_t mips) {
 Result<ImageHandle> add_environment_cube_passes(RenderGraph& graph, ProgramCache& programs,
                                                 const Sampler& equirect_sampler, ImageHandle equirect,
                                                 ImageHandle cube) {
-    const VkDescriptorType to_cube_bindings[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                                 VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
-    auto to_cube = programs.compute("ibl/equirect_to_cube.comp", to_cube_bindings, 0);
+    auto to_cube = programs.compute("ibl/equirect_to_cube.comp");
     if (!to_cube) return to_cube.error();
-    const VkDescriptorType downsample_bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
-    auto downsample = programs.compute("ibl/cube_downsample.comp", downsample_bindings, 0);
+    auto downsample = programs.compute("ibl/cube_downsample.comp");
     if (!downsample) return downsample.error();
 
     const ImageDesc desc = graph.resource(cube).image_desc;
@@ -50,7 +48,7 @@ Result<ImageHandle> add_environment_cube_passes(RenderGraph& graph, ProgramCache
             DescriptorWrite::sampled_image(pc.view(equirect, ImageRange::mip(0)), sampler),
             DescriptorWrite::storage_image(pc.view(cube, ImageRange::mip(0), array))};
         p->push_descriptors(pc.cmd(), writes);
-        vkCmdDispatch(pc.cmd(), group_count(n, 8), group_count(n, 8), 6);
+        dispatch_cube(pc, *p, n);
     });
     for (uint32_t m = 1; m < desc.mip_levels; ++m) {
         graph.add_compute_pass("cube mip " + std::to_string(m), [&](PassBuilder& b) {
@@ -62,7 +60,7 @@ Result<ImageHandle> add_environment_cube_passes(RenderGraph& graph, ProgramCache
                 DescriptorWrite::storage_image(pc.view(cube, ImageRange::mip(m - 1), array)),
                 DescriptorWrite::storage_image(pc.view(cube, ImageRange::mip(m), array))};
             p->push_descriptors(pc.cmd(), writes);
-            vkCmdDispatch(pc.cmd(), group_count(n, 8), group_count(n, 8), 6);
+            dispatch_cube(pc, *p, n);
         });
     }
     return current;

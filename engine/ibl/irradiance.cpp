@@ -28,12 +28,11 @@ Result<CubeTexelList> texel_list(RenderGraph& graph, ProgramCache& programs, Ima
 
 Result<ImageHandle> add_texel_convolution(RenderGraph& graph, ProgramCache& programs, ImageHandle environment,
                                           ImageHandle equirect, ImageHandle irradiance, const IrradianceSettings& s) {
-    const VkDescriptorType conv_bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
     struct Params {
         uint32_t texel_count, gaussian;
         float sigma;
     };
-    auto convolve = programs.compute("ibl/irradiance_convolve.comp", conv_bindings, sizeof(Params));
+    auto convolve = programs.compute("ibl/irradiance_convolve.comp");
     if (!convolve) return convolve.error();
     auto list = texel_list(graph, programs, environment, equirect, s, "irradiance texel list");
     if (!list) return list.error();
@@ -49,7 +48,7 @@ Result<ImageHandle> add_texel_convolution(RenderGraph& graph, ProgramCache& prog
                                           DescriptorWrite::storage_image(pc.view(irradiance, {}, array_view))};
         p->push_descriptors(pc.cmd(), writes);
         p->push_constants(pc.cmd(), params);
-        dispatch_cube(pc, n);
+        dispatch_cube(pc, *p, n);
     });
     return written;
 }
@@ -57,20 +56,19 @@ Result<ImageHandle> add_texel_convolution(RenderGraph& graph, ProgramCache& prog
 // sh9: project the texel list on 9 SH functions, reduce, choose the window, evaluate.
 Result<ImageHandle> add_sh9(RenderGraph& graph, ProgramCache& programs, ImageHandle environment, ImageHandle equirect,
                             ImageHandle irradiance, const IrradianceSettings& s, BufferHandle* coefficients_out) {
-    const VkDescriptorType two_buffers[] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
-    const VkDescriptorType buffer_image[] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
-    auto project = programs.compute("ibl/sh9_project.comp", two_buffers, sizeof(uint32_t));
+    auto project = programs.compute("ibl/sh9_project.comp");
     if (!project) return project.error();
     struct ReduceParams {
         uint32_t group_count, windowing;
     };
-    auto reduce = programs.compute("ibl/sh9_reduce.comp", two_buffers, sizeof(ReduceParams));
+    auto reduce = programs.compute("ibl/sh9_reduce.comp");
     if (!reduce) return reduce.error();
-    auto evaluate = programs.compute("ibl/sh9_irradiance.comp", buffer_image, 0);
+    auto evaluate = programs.compute("ibl/sh9_irradiance.comp");
     if (!evaluate) return evaluate.error();
     auto list = texel_list(graph, programs, environment, equirect, s, "sh9 texel list");
     if (!list) return list.error();
-    const uint32_t groups = group_count(list->count, 64);
+    // One partial sum per workgroup of the projection (sh9_reduce adds them).
+    const uint32_t groups = group_count(list->count, (*project)->workgroup_size()[0]);
     auto partials = graph.create_buffer("sh9 partial sums", {VkDeviceSize(groups) * 9 * 16});
     auto coefficients = graph.create_buffer("sh9 coefficients", {10 * 16});
     graph.add_compute_pass("sh9 project", [&](PassBuilder& b) {
@@ -105,7 +103,7 @@ Result<ImageHandle> add_sh9(RenderGraph& graph, ProgramCache& programs, ImageHan
         const DescriptorWrite writes[] = {DescriptorWrite::storage_buffer(pc.buffer(coefficients)),
                                           DescriptorWrite::storage_image(pc.view(irradiance, {}, array_view))};
         p->push_descriptors(pc.cmd(), writes);
-        dispatch_cube(pc, n);
+        dispatch_cube(pc, *p, n);
     });
     if (coefficients_out) *coefficients_out = coefficients;
     return written;
@@ -115,9 +113,7 @@ Result<ImageHandle> add_sh9(RenderGraph& graph, ProgramCache& programs, ImageHan
 Result<ImageHandle> add_cube_sampling(RenderGraph& graph, ProgramCache& programs, const Sampler& sampler,
                                       ImageHandle environment, ImageHandle irradiance, const IrradianceSettings& s) {
     const bool riemann = s.method == IrradianceMethod::riemann;
-    const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
-    auto program =
-        programs.compute(riemann ? "ibl/irradiance_riemann.comp" : "ibl/cube_sample_lod.comp", bindings, sizeof(float));
+    auto program = programs.compute(riemann ? "ibl/irradiance_riemann.comp" : "ibl/cube_sample_lod.comp");
     if (!program) return program.error();
     const ImageDesc& env = graph.resource(environment).image_desc;
     float parameter = s.riemann_step;
@@ -134,7 +130,7 @@ Result<ImageHandle> add_cube_sampling(RenderGraph& graph, ProgramCache& programs
                                           DescriptorWrite::storage_image(pc.view(irradiance, {}, array_view))};
         p->push_descriptors(pc.cmd(), writes);
         p->push_constants(pc.cmd(), parameter);
-        dispatch_cube(pc, n);
+        dispatch_cube(pc, *p, n);
     });
     return written;
 }

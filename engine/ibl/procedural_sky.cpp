@@ -48,8 +48,7 @@ std::string ProceduralSky::content_hash() const {
 
 Result<ImageHandle> add_procedural_sky_pass(RenderGraph& graph, ProgramCache& programs, const ProceduralSky& sky,
                                             ImageHandle target) {
-    const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
-    auto pipeline = programs.compute("ibl/procedural_sky.comp", bindings, sizeof(SkyParams));
+    auto pipeline = programs.compute("ibl/procedural_sky.comp");
     if (!pipeline) return pipeline.error();
     const auto dir = sky.sun_direction();
     const double to_rad = pi / 180.0;
@@ -67,8 +66,9 @@ Result<ImageHandle> add_procedural_sky_pass(RenderGraph& graph, ProgramCache& pr
                                    DescriptorWrite::storage_image(pc.view(target, ImageRange::mip(0)))};
                                p->push_descriptors(pc.cmd(), writes);
                                p->push_constants(pc.cmd(), params);
-                               // 8x8 groups over the whole image: lavapipe spreads groups over its threads.
-                               vkCmdDispatch(pc.cmd(), group_count(d.width, 8), group_count(d.height, 8), 1);
+                               // Small groups over the whole image: lavapipe spreads groups over its threads.
+                               const auto local = p->workgroup_size();
+                               vkCmdDispatch(pc.cmd(), group_count(d.width, local[0]), group_count(d.height, local[1]), 1);
                            });
     return written;
 }

@@ -55,10 +55,7 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
     if (s.levels > env.mip_levels) return Error{"specular: more levels than the environment cube has"};
     if (s.sample_count == 0) return Error{"specular: sample count must be at least 1"};
 
-    const VkDescriptorType storage2[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
-    const VkDescriptorType sampled[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
-    const VkDescriptorType conv_bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
-    auto copy = programs.compute("ibl/cube_copy_level.comp", storage2, 0);
+    auto copy = programs.compute("ibl/cube_copy_level.comp");
     if (!copy) return copy.error();
 
     ImageHandle current = specular;
@@ -74,7 +71,7 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
                 DescriptorWrite::storage_image(pc.view(environment, ImageRange::mip(0), array_view)),
                 DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(0), array_view))};
             p->push_descriptors(pc.cmd(), writes);
-            dispatch_cube(pc, n);
+            dispatch_cube(pc, *p, n);
         });
     }
 
@@ -89,7 +86,7 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
                 uint32_t texel_count;
                 float roughness;
             };
-            auto conv = programs.compute("ibl/specular_convolve.comp", conv_bindings, sizeof(Params));
+            auto conv = programs.compute("ibl/specular_convolve.comp");
             if (!conv) return conv.error();
             const uint32_t source = convolve_source_size(r);
             const bool from_equirect = equirect.valid() && graph.resource(equirect).image_desc.height >= 16;
@@ -110,12 +107,12 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
                     DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(m), array_view))};
                 p->push_descriptors(pc.cmd(), writes);
                 p->push_constants(pc.cmd(), params);
-                dispatch_cube(pc, n);
+                dispatch_cube(pc, *p, n);
             });
             continue;
         }
         if (method == SpecularMethod::mips) {
-            auto sample = programs.compute("ibl/cube_sample_lod.comp", sampled, sizeof(float));
+            auto sample = programs.compute("ibl/cube_sample_lod.comp");
             if (!sample) return sample.error();
             const float lod = r * float(env.mip_levels - 1);
             graph.add_compute_pass(name, [&](PassBuilder& b) {
@@ -128,7 +125,7 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
                     DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(m), array_view))};
                 p->push_descriptors(pc.cmd(), writes);
                 p->push_constants(pc.cmd(), lod);
-                dispatch_cube(pc, n);
+                dispatch_cube(pc, *p, n);
             });
             continue;
         }
@@ -138,7 +135,7 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
             uint32_t filtered;
             float source_size;
         };
-        auto sample = programs.compute("ibl/specular_importance.comp", sampled, sizeof(Params));
+        auto sample = programs.compute("ibl/specular_importance.comp");
         if (!sample) return sample.error();
         const Params params{s.sample_count, r, method == SpecularMethod::filtered ? 1u : 0u, float(env.width)};
         graph.add_compute_pass(name, [&](PassBuilder& b) {
@@ -151,7 +148,7 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
                 DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(m), array_view))};
             p->push_descriptors(pc.cmd(), writes);
             p->push_constants(pc.cmd(), params);
-            dispatch_cube(pc, n);
+            dispatch_cube(pc, *p, n);
         });
     }
     return current;

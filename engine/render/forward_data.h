@@ -41,7 +41,6 @@ struct SkyConstants {
     float lod;
     float intensity;
     uint32_t disks;
-    float pad;
 };
 
 inline LightData disk_data(const DiskLight& d) {

@@ -19,17 +19,6 @@ using namespace forward;
 
 namespace {
 
-const std::vector<VkDescriptorType>& forward_bindings() {
-    static const std::vector<VkDescriptorType> b = {
-        VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,         VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-        VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,         VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
-    return b;
-}
-
 VkSamplerCreateInfo clamped_linear() {
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     info.magFilter = info.minFilter = VK_FILTER_LINEAR;
@@ -92,8 +81,6 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     defines.push_back({"VIEW", std::to_string(int(view))});
 
     Pipeline::GraphicsDesc desc;
-    desc.bindings = forward_bindings();
-    desc.push_constant_bytes = sizeof(DrawConstants);
     desc.color_formats = {target.color};
     desc.depth_format = target.depth;
     desc.samples = target.samples;

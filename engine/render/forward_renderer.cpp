@@ -28,18 +28,16 @@ Result<ImageHandle> ForwardRenderer::add_skybox_pass(RenderGraph& graph, ImageHa
     const VkFormat format = graph.resource(hdr).image_desc.format;
     if (format != VK_FORMAT_R32G32B32A32_SFLOAT && format != VK_FORMAT_R16G16B16A16_SFLOAT)
         return Error{"the skybox composites into RGBA32F or RGBA16F images, not '" + graph.resource(hdr).name + "'"};
-    const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                                         VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
     std::vector<ShaderDefine> defines;
     if (format == VK_FORMAT_R16G16B16A16_SFLOAT) defines.push_back({"FRAME_RGBA16F", "1"});
-    auto sky = programs_.compute("render/skybox.comp", bindings, sizeof(SkyConstants), defines);
+    auto sky = programs_.compute("render/skybox.comp", defines);
     if (!sky) return sky.error();
     std::vector<LightData> disks;
     for (const DiskLight& d : s.environment_lights) disks.push_back(disk_data(d));
     glm::mat4 rotation = camera.view;
     rotation[3] = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
     const SkyConstants constants{glm::inverse(camera.projection * rotation), 0.0f, ibl.intensity,
-                                 uint32_t(disks.size()), 0.0f};
+                                 uint32_t(disks.size())};
     ImageHandle written;
     graph.add_compute_pass("skybox", [&](PassBuilder& b) {
         b.sample(ibl.cube);
@@ -55,7 +53,8 @@ Result<ImageHandle> ForwardRenderer::add_skybox_pass(RenderGraph& graph, ImageHa
                                           DescriptorWrite::storage_buffer(disk_buffer.handle())};
         p->push_descriptors(pc.cmd(), writes);
         p->push_constants(pc.cmd(), constants);
-        vkCmdDispatch(pc.cmd(), group_count(d.width, 8), group_count(d.height, 8), 1);
+        const auto local = p->workgroup_size();
+        vkCmdDispatch(pc.cmd(), group_count(d.width, local[0]), group_count(d.height, local[1]), 1);
     });
     return written;
 }

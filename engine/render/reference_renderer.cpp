@@ -69,14 +69,7 @@ Result<ReferenceStats> ReferenceRenderer::accumulate(const ReferenceSurface& sur
         return Error{"reference: every surface view is needed"};
     if (settings.batch_samples == 0 || settings.max_samples == 0)
         return Error{"reference: the sample counts must be at least 1"};
-    const VkDescriptorType bindings[] = {
-        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-        VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-        VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,         VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-        VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,          VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
-    auto pipeline = programs_.compute("render/reference.comp", bindings, sizeof(Params));
+    auto pipeline = programs_.compute("render/reference.comp");
     if (!pipeline) return pipeline.error();
 
     std::vector<LightData> lights;
@@ -143,7 +136,8 @@ Result<ReferenceStats> ReferenceRenderer::accumulate(const ReferenceSurface& sur
             writes.push_back(DescriptorWrite::storage_image(pc.view(mom)));
             p->push_descriptors(pc.cmd(), writes);
             p->push_constants(pc.cmd(), params);
-            vkCmdDispatch(pc.cmd(), group_count(desc.width, 8), group_count(desc.height, 8), 1);
+            const auto local = p->workgroup_size();
+            vkCmdDispatch(pc.cmd(), group_count(desc.width, local[0]), group_count(desc.height, local[1]), 1);
         });
         CompiledGraph compiled = graph.compile();
         GraphRun run(context_, compiled);
@@ -171,9 +165,7 @@ Result<ReferenceStats> ReferenceRenderer::accumulate(const ReferenceSurface& sur
 
 Result<ImageHandle> ReferenceRenderer::add_resolve_pass(RenderGraph& graph, ImageHandle accumulation,
                                                         ImageHandle normal, ImageHandle frame_out) {
-    const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                         VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
-    auto pipeline = programs_.compute("render/reference_resolve.comp", bindings, 0);
+    auto pipeline = programs_.compute("render/reference_resolve.comp");
     if (!pipeline) return pipeline.error();
     ImageHandle written;
     graph.add_compute_pass("reference resolve", [&](PassBuilder& b) {
@@ -187,7 +179,8 @@ Result<ImageHandle> ReferenceRenderer::add_resolve_pass(RenderGraph& graph, Imag
                                           DescriptorWrite::sampled_image(pc.view(normal), sampler),
                                           DescriptorWrite::storage_image(pc.view(frame_out))};
         p->push_descriptors(pc.cmd(), writes);
-        vkCmdDispatch(pc.cmd(), group_count(d.width, 8), group_count(d.height, 8), 1);
+        const auto local = p->workgroup_size();
+        vkCmdDispatch(pc.cmd(), group_count(d.width, local[0]), group_count(d.height, local[1]), 1);
     });
     return written;
 }

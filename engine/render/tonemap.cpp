@@ -13,8 +13,7 @@ Result<ImageHandle> add_tonemap_pass(RenderGraph& graph, ProgramCache& programs,
         uint32_t tonemap;
         float gamma;
     };
-    const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
-    auto pipeline = programs.compute("render/tonemap.comp", bindings, sizeof(Params));
+    auto pipeline = programs.compute("render/tonemap.comp");
     if (!pipeline) return pipeline.error();
     ImageHandle written;
     graph.add_compute_pass("tonemap", [&](PassBuilder& b) {
@@ -28,7 +27,8 @@ Result<ImageHandle> add_tonemap_pass(RenderGraph& graph, ProgramCache& programs,
         p->push_descriptors(pc.cmd(), writes);
         const Params params{display.exposure, uint32_t(display.tonemap), display.gamma};
         p->push_constants(pc.cmd(), params);
-        vkCmdDispatch(pc.cmd(), group_count(d.width, 8), group_count(d.height, 8), 1);
+        const auto local = p->workgroup_size();
+        vkCmdDispatch(pc.cmd(), group_count(d.width, local[0]), group_count(d.height, local[1]), 1);
     });
     return written;
 }

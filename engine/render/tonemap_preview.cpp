@@ -7,8 +7,7 @@ namespace facet {
 
 Result<ImageHandle> add_tonemap_preview_pass(RenderGraph& graph, ProgramCache& programs, ImageHandle hdr,
                                              ImageHandle ldr, float exposure) {
-    const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
-    auto pipeline = programs.compute("render/tonemap_preview.comp", bindings, sizeof(float));
+    auto pipeline = programs.compute("render/tonemap_preview.comp");
     if (!pipeline) return pipeline.error();
     ImageHandle written;
     graph.add_compute_pass("tonemap preview", [&](PassBuilder& b) {
@@ -21,7 +20,8 @@ Result<ImageHandle> add_tonemap_preview_pass(RenderGraph& graph, ProgramCache& p
                                           DescriptorWrite::storage_image(pc.view(ldr, ImageRange::mip(0)))};
         p->push_descriptors(pc.cmd(), writes);
         p->push_constants(pc.cmd(), exposure);
-        vkCmdDispatch(pc.cmd(), group_count(d.width, 8), group_count(d.height, 8), 1);
+        const auto local = p->workgroup_size();
+        vkCmdDispatch(pc.cmd(), group_count(d.width, local[0]), group_count(d.height, local[1]), 1);
     });
     return written;
 }

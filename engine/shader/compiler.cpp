@@ -81,6 +81,12 @@ void write_disk(const std::string& dir, uint64_t key, const std::vector<uint32_t
     if (ec) std::filesystem::remove(temp, ec);
 }
 
+Result<Spirv> with_reflection(std::vector<uint32_t> words, uint64_t key, std::string_view name) {
+    auto reflection = reflect_spirv(words, name);
+    if (!reflection) return reflection.error();
+    return Spirv{std::move(words), key, std::move(reflection).value()};
+}
+
 }  // namespace
 
 const char* stage_name(ShaderStage stage) {
@@ -123,7 +129,7 @@ Result<Spirv> ShaderCompiler::compile_source(ShaderStage stage, std::string_view
         std::lock_guard lock(mutex_);
         if (auto it = memory_cache_.find(key); it != memory_cache_.end()) {
             ++stats_.memory_hits;
-            return Spirv{it->second, key};
+            return with_reflection(it->second, key, name);
         }
     }
     if (!options_.disk_cache_dir.empty()) {
@@ -131,7 +137,7 @@ Result<Spirv> ShaderCompiler::compile_source(ShaderStage stage, std::string_view
             std::lock_guard lock(mutex_);
             ++stats_.disk_hits;
             memory_cache_[key] = *words;
-            return Spirv{std::move(*words), key};
+            return with_reflection(std::move(*words), key, name);
         }
     }
     auto words = glslang_frontend::compile(library_, input);
@@ -140,7 +146,7 @@ Result<Spirv> ShaderCompiler::compile_source(ShaderStage stage, std::string_view
     std::lock_guard lock(mutex_);
     ++stats_.compiles;
     memory_cache_[key] = *words;
-    return Spirv{std::move(words).value(), key};
+    return with_reflection(std::move(words).value(), key, name);
 }
 
 ShaderCompiler::Stats ShaderCompiler::stats() const {

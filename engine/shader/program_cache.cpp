@@ -14,20 +14,14 @@ Result<const Pipeline*> ProgramCache::get(const std::string& key, std::function<
     return result;
 }
 
-Result<const Pipeline*> ProgramCache::compute(const std::string& shader, std::span<const VkDescriptorType> bindings,
-                                              uint32_t push_constant_bytes, std::span<const ShaderDefine> defines) {
+Result<const Pipeline*> ProgramCache::compute(const std::string& shader, std::span<const ShaderDefine> defines) {
     std::string key = shader;
     for (const ShaderDefine& d : defines) key += "|" + d.name + "=" + d.value;
-    std::vector<VkDescriptorType> binding_list(bindings.begin(), bindings.end());
     std::vector<ShaderDefine> define_list(defines.begin(), defines.end());
-    return get(key, [this, shader, binding_list, push_constant_bytes, define_list]() -> Result<Pipeline> {
+    return get(key, [this, shader, define_list]() -> Result<Pipeline> {
         auto spirv = compiler_.compile(ShaderStage::compute, shader, define_list);
         if (!spirv) return spirv.error();
-        try {
-            return Pipeline::compute(context_, spirv->words, binding_list, push_constant_bytes, shader);
-        } catch (const VulkanError& e) {
-            return Error{shader + ": cannot create the pipeline: " + e.what(), e.result()};
-        }
+        return Pipeline::compute(context_, spirv->words, shader);
     });
 }
 
@@ -37,11 +31,10 @@ Result<const Pipeline*> ProgramCache::graphics(const std::string& vertex_shader,
     std::string key = vertex_shader + "+" + fragment_shader;
     for (const ShaderDefine& d : defines) key += "|" + d.name + "=" + d.value;
     for (VkFormat f : desc.color_formats) key += "|c" + std::to_string(f);
-    for (VkDescriptorType t : desc.bindings) key += "|b" + std::to_string(t);
     for (const auto& a : desc.vertex_attributes) key += "|a" + std::to_string(a.format) + "@" + std::to_string(a.offset);
     key += "|d" + std::to_string(desc.depth_format) + "|s" + std::to_string(desc.samples) + "|cull" +
            std::to_string(desc.cull) + "|t" + std::to_string(desc.depth_test) + std::to_string(desc.depth_write) +
-           "|blend" + std::to_string(desc.alpha_blend) + "|pc" + std::to_string(desc.push_constant_bytes) + "|topo" +
+           "|blend" + std::to_string(desc.alpha_blend) + "|topo" +
            std::to_string(desc.topology);
     std::vector<ShaderDefine> define_list(defines.begin(), defines.end());
     desc.vertex_spirv = {};
@@ -54,11 +47,7 @@ Result<const Pipeline*> ProgramCache::graphics(const std::string& vertex_shader,
         Pipeline::GraphicsDesc d = desc;
         d.vertex_spirv = vertex->words;
         d.fragment_spirv = fragment->words;
-        try {
-            return Pipeline::graphics(context_, d, fragment_shader);
-        } catch (const VulkanError& e) {
-            return Error{fragment_shader + ": cannot create the pipeline: " + e.what(), e.result()};
-        }
+        return Pipeline::graphics(context_, d, vertex_shader + " + " + fragment_shader);
     });
 }
 

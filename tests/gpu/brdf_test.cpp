@@ -54,8 +54,12 @@ std::vector<BrdfOutput> evaluate(Context& context, const std::vector<BrdfInput>&
         ADD_FAILURE() << spirv.error().message;
         return {};
     }
-    const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
-    Pipeline pipeline = Pipeline::compute(context, spirv->words, bindings, 0, "brdf eval");
+    auto built = Pipeline::compute(context, spirv->words, "brdf eval");
+    if (!built) {
+        ADD_FAILURE() << built.error().message;
+        return {};
+    }
+    Pipeline pipeline = std::move(built).value();
     Buffer in(context, inputs.size() * sizeof(BrdfInput), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::upload,
               "brdf inputs");
     Buffer out(context, inputs.size() * sizeof(BrdfOutput), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
@@ -67,7 +71,7 @@ std::vector<BrdfOutput> evaluate(Context& context, const std::vector<BrdfInput>&
         const DescriptorWrite writes[] = {DescriptorWrite::storage_buffer(in.handle()),
                                           DescriptorWrite::storage_buffer(out.handle())};
         pipeline.push_descriptors(cmd, writes);
-        vkCmdDispatch(cmd, group_count(static_cast<uint32_t>(inputs.size()), 64), 1, 1);
+        vkCmdDispatch(cmd, group_count(static_cast<uint32_t>(inputs.size()), pipeline.workgroup_size()[0]), 1, 1);
         memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     });

@@ -86,10 +86,12 @@ const ResourceState readable{VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_S
 
 class GraphGpuTest : public test::GpuTest {
 protected:
-    Pipeline compute(const char* source, std::vector<VkDescriptorType> bindings) {
+    Pipeline compute(const char* source) {
         auto spirv = compiler_.compile_source(ShaderStage::compute, "test.comp", source);
         EXPECT_TRUE(spirv) << spirv.error().message;
-        return Pipeline::compute(ctx(), spirv->words, bindings, 0, "test pipeline");
+        auto pipeline = Pipeline::compute(ctx(), spirv->words, "test pipeline");
+        EXPECT_TRUE(pipeline) << pipeline.error().message;
+        return pipeline ? std::move(pipeline).value() : Pipeline{};
     }
     std::vector<float> read_rgba32f(GraphRun& run, ImageHandle h, uint32_t mip, VkImageLayout layout) {
         Image* image = run.transient_image(h);
@@ -102,9 +104,8 @@ protected:
     // Pass "pattern" writes a w x h image from its texel coordinates; pass "transform"
     // samples it and writes 2 * value + 1 into the returned image (exported, readable).
     ImageHandle add_pattern_then_transform(RenderGraph& g, uint32_t w, uint32_t h) {
-        pattern_ = compute(pattern_source, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
-        transform_ = compute(transform_source,
-                             {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
+        pattern_ = compute(pattern_source);
+        transform_ = compute(transform_source);
         ImageDesc desc;
         desc.width = w;
         desc.height = h;
@@ -114,7 +115,8 @@ protected:
             pattern_.bind(pc.cmd());
             const DescriptorWrite writes[] = {DescriptorWrite::storage_image(pc.view(a))};
             pattern_.push_descriptors(pc.cmd(), writes);
-            vkCmdDispatch(pc.cmd(), group_count(w, 8), group_count(h, 8), 1);
+            const auto local = pattern_.workgroup_size();
+            vkCmdDispatch(pc.cmd(), group_count(w, local[0]), group_count(h, local[1]), 1);
         });
         g.add_compute_pass("transform", [&](PassBuilder& pb) {
             pb.sample(a);
@@ -124,7 +126,8 @@ protected:
             const DescriptorWrite writes[] = {DescriptorWrite::sampled_image(pc.view(a), sampler_.handle()),
                                               DescriptorWrite::storage_image(pc.view(b))};
             transform_.push_descriptors(pc.cmd(), writes);
-            vkCmdDispatch(pc.cmd(), group_count(w, 8), group_count(h, 8), 1);
+            const auto local = transform_.workgroup_size();
+            vkCmdDispatch(pc.cmd(), group_count(w, local[0]), group_count(h, local[1]), 1);
         });
         g.export_image(b, readable);
         return b;
@@ -163,9 +166,8 @@ TEST_F(GraphGpuTest, ComputeChainMatchesCpu) {
 
 TEST_F(GraphGpuTest, MipChainPassesReadThePreviousLevel) {
     const uint32_t size = 64, mips = 4;
-    Pipeline pattern = compute(pattern_source, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
-    Pipeline downsample =
-        compute(downsample_source, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
+    Pipeline pattern = compute(pattern_source);
+    Pipeline downsample = compute(downsample_source);
     ImageDesc desc;
     desc.width = desc.height = size;
     desc.mip_levels = mips;
@@ -177,7 +179,8 @@ TEST_F(GraphGpuTest, MipChainPassesReadThePreviousLevel) {
                            const DescriptorWrite writes[] = {
                                DescriptorWrite::storage_image(pc.view(handle, ImageRange::mip(0)))};
                            pattern.push_descriptors(pc.cmd(), writes);
-                           vkCmdDispatch(pc.cmd(), size / 8, size / 8, 1);
+                           const auto local = pattern.workgroup_size();
+                           vkCmdDispatch(pc.cmd(), group_count(size, local[0]), group_count(size, local[1]), 1);
                        });
     for (uint32_t m = 1; m < mips; ++m) {
         g.add_compute_pass("mip " + std::to_string(m), [&, m](PassBuilder& pb) {
@@ -189,7 +192,8 @@ TEST_F(GraphGpuTest, MipChainPassesReadThePreviousLevel) {
                 DescriptorWrite::sampled_image(pc.view(handle, ImageRange::mip(m - 1)), sampler_.handle()),
                 DescriptorWrite::storage_image(pc.view(handle, ImageRange::mip(m)))};
             downsample.push_descriptors(pc.cmd(), writes);
-            vkCmdDispatch(pc.cmd(), group_count(size >> m, 8), group_count(size >> m, 8), 1);
+            const auto local = downsample.workgroup_size();
+            vkCmdDispatch(pc.cmd(), group_count(size >> m, local[0]), group_count(size >> m, local[1]), 1);
         });
     }
     g.export_image(chain, readable);
@@ -222,7 +226,9 @@ TEST_F(GraphGpuTest, GraphicsPassClearsAndDrawsATriangle) {
     pd.vertex_spirv = vs->words;
     pd.fragment_spirv = fs->words;
     pd.color_formats = {VK_FORMAT_R8G8B8A8_UNORM};
-    Pipeline triangle = Pipeline::graphics(ctx(), pd, "triangle");
+    auto built = Pipeline::graphics(ctx(), pd, "triangle");
+    ASSERT_TRUE(built) << built.error().message;
+    Pipeline triangle = std::move(built).value();
     ImageDesc desc;
     desc.format = VK_FORMAT_R8G8B8A8_UNORM;
     desc.width = w;
@@ -294,7 +300,7 @@ TEST_F(GraphGpuTest, PerPassSubmissionsReportProgress) {
 }
 
 TEST_F(GraphGpuTest, HostRecordedCommandBuffer) {
-    Pipeline pattern = compute(pattern_source, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
+    Pipeline pattern = compute(pattern_source);
     ImageDesc desc;
     desc.width = desc.height = 16;
     RenderGraph g;
@@ -303,7 +309,8 @@ TEST_F(GraphGpuTest, HostRecordedCommandBuffer) {
         pattern.bind(pc.cmd());
         const DescriptorWrite writes[] = {DescriptorWrite::storage_image(pc.view(a))};
         pattern.push_descriptors(pc.cmd(), writes);
-        vkCmdDispatch(pc.cmd(), 2, 2, 1);
+        const auto local = pattern.workgroup_size();
+        vkCmdDispatch(pc.cmd(), group_count(16, local[0]), group_count(16, local[1]), 1);
     });
     g.export_image(a, readable);
     CompiledGraph compiled = g.compile();

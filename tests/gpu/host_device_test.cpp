@@ -38,9 +38,10 @@ layout(std430, binding = 0) buffer V { uint v[]; };
 void main() { v[gl_GlobalInvocationID.x] += 7u; }
 )");
     ASSERT_TRUE(fill && add);
-    const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
-    Pipeline fill_pipeline = Pipeline::compute(context, fill->words, bindings, 0, "fill");
-    Pipeline add_pipeline = Pipeline::compute(context, add->words, bindings, 0, "add");
+    auto fill_built = Pipeline::compute(context, fill->words, "fill");
+    auto add_built = Pipeline::compute(context, add->words, "add");
+    ASSERT_TRUE(fill_built && add_built);
+    Pipeline fill_pipeline = std::move(fill_built).value(), add_pipeline = std::move(add_built).value();
     const uint32_t count = 1024;
     Buffer result(context, count * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::readback, "host test result");
 
@@ -53,7 +54,7 @@ void main() { v[gl_GlobalInvocationID.x] += 7u; }
             p.bind(pc.cmd());
             const DescriptorWrite writes[] = {DescriptorWrite::storage_buffer(pc.buffer(h))};
             p.push_descriptors(pc.cmd(), writes);
-            vkCmdDispatch(pc.cmd(), count / 64, 1, 1);
+            vkCmdDispatch(pc.cmd(), group_count(count, p.workgroup_size()[0]), 1, 1);
         };
     };
     BufferHandle before_fill = values;

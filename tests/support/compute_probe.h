@@ -26,8 +26,12 @@ inline std::vector<float> run_compute_probe(Context& context, std::string_view n
         ADD_FAILURE() << spirv.error().message;
         return {};
     }
-    const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
-    Pipeline pipeline = Pipeline::compute(context, spirv->words, bindings, 0, std::string(name));
+    auto built = Pipeline::compute(context, spirv->words, std::string(name));
+    if (!built) {
+        ADD_FAILURE() << built.error().message;
+        return {};
+    }
+    Pipeline pipeline = std::move(built).value();
     Buffer out(context, count * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::readback,
                "probe output");
     context.submit_and_wait([&](VkCommandBuffer cmd) {

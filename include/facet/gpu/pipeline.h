@@ -1,16 +1,26 @@
 #pragma once
-// Compute and graphics pipelines whose descriptors are pushed (VK_KHR_push_descriptor):
-// set 0 holds bindings 0..n-1 of the given types; one push-constant range for all stages.
+// Compute and graphics pipelines whose descriptors are pushed (VK_KHR_push_descriptor).
+// The layout comes from the shaders' SPIR-V (facet/shader/reflection.h): set 0 holds the
+// bindings the shaders declare, with their descriptor types and array sizes, and one
+// push-constant range of the shaders' push block covers every stage; a compute
+// pipeline knows its workgroup size. C++ never restates them.
 //
-// Errors: creation throws VulkanError when the driver fails and UsageError for
-// programmer misuse (empty SPIR-V). Thread safety: pipelines may be created on several
-// threads at once; binding and pushing record into the caller's command buffer.
+// Errors: creation returns an Error when the SPIR-V cannot be reflected (naming the
+// shader and the variable) or the driver fails. UsageError (thrown) is for programmer
+// misuse: empty SPIR-V, descriptors or push constants that do not match what the
+// shaders declare, the workgroup size of a graphics pipeline. Thread safety: pipelines
+// may be created on several threads at once; binding and pushing record into the
+// caller's command buffer.
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
 
 #include <vulkan/vulkan.h>
+
+#include <facet/core/result.h>
+#include <facet/shader/reflection.h>
 
 namespace facet {
 
@@ -19,9 +29,9 @@ class Context;
 class PipelineLayout {
 public:
     PipelineLayout() = default;
-    PipelineLayout(Context& context, std::span<const VkDescriptorType> bindings,
-                   VkShaderStageFlags stages, uint32_t push_constant_bytes,
-                   const std::string& name);
+    // Set 0 of the reflection's bindings and its push-constant range, visible to its stages.
+    static Result<PipelineLayout> create(Context& context, const ShaderReflection& reflection,
+                                         const std::string& name);
     ~PipelineLayout();
     PipelineLayout(PipelineLayout&& other) noexcept;
     PipelineLayout& operator=(PipelineLayout&& other) noexcept;
@@ -60,15 +70,13 @@ public:
     Pipeline(Pipeline&& other) noexcept;
     Pipeline& operator=(Pipeline&& other) noexcept;
 
-    static Pipeline compute(Context& context, std::span<const uint32_t> spirv,
-                            std::span<const VkDescriptorType> bindings,
-                            uint32_t push_constant_bytes, const std::string& name);
+    // A compute pipeline running `spirv` (entry point "main"); bindings, push-constant
+    // size and workgroup size are read from it.
+    static Result<Pipeline> compute(Context& context, std::span<const uint32_t> spirv, const std::string& name);
 
     struct GraphicsDesc {
         std::span<const uint32_t> vertex_spirv;
         std::span<const uint32_t> fragment_spirv;
-        std::vector<VkDescriptorType> bindings;
-        uint32_t push_constant_bytes = 0;
         std::vector<VkFormat> color_formats;
         VkFormat depth_format = VK_FORMAT_UNDEFINED;
         VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
@@ -81,16 +89,25 @@ public:
         bool depth_write = false;
         bool alpha_blend = false;
     };
-    // Dynamic rendering; viewport and scissor are dynamic state.
-    static Pipeline graphics(Context& context, const GraphicsDesc& desc, const std::string& name);
+    // Dynamic rendering; viewport and scissor are dynamic state. The layout is the union
+    // of the two stages' interfaces (a binding both declare must agree).
+    static Result<Pipeline> graphics(Context& context, const GraphicsDesc& desc, const std::string& name);
 
     VkPipeline handle() const { return pipeline_; }
     VkPipelineLayout layout() const { return layout_.handle(); }
     VkPipelineBindPoint bind_point() const { return bind_point_; }
+    // What the shaders declare: bindings of set 0, push-constant size, workgroup size.
+    const ShaderReflection& reflection() const { return reflection_; }
+    // local_size_x, _y, _z of a compute pipeline (UsageError for a graphics pipeline):
+    // dispatch group_count(width, workgroup_size()[0]) groups, ...
+    std::array<uint32_t, 3> workgroup_size() const;
 
     void bind(VkCommandBuffer cmd) const;
-    // Pushes descriptors for bindings 0..writes.size()-1 of set 0.
+    // One write per descriptor of set 0, in binding order (an array binding takes one write
+    // per element). UsageError when their number or types differ from the shaders'.
     void push_descriptors(VkCommandBuffer cmd, std::span<const DescriptorWrite> writes) const;
+    // The whole push-constant block: UsageError unless `bytes` is the size the shaders
+    // declare (reflection().push_constant_bytes).
     void push_constants(VkCommandBuffer cmd, const void* data, uint32_t bytes) const;
     template <class T>
     void push_constants(VkCommandBuffer cmd, const T& data) const {
@@ -100,6 +117,8 @@ public:
 private:
     void reset();
     Context* context_ = nullptr;
+    std::string name_;
+    ShaderReflection reflection_;
     PipelineLayout layout_;
     VkPipeline pipeline_ = VK_NULL_HANDLE;
     VkPipelineBindPoint bind_point_ = VK_PIPELINE_BIND_POINT_COMPUTE;

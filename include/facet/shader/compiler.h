@@ -4,7 +4,8 @@
 // #include "x.glsl" resolves against the including file's folder, then shaders/;
 // errors read `file:line: error: message` followed by the offending source line.
 // Results are cached in memory (and optionally on disk) by a hash of the preprocessed
-// source, so an edited include changes the key.
+// source, so an edited include changes the key. Each result carries the shader's
+// interface (bindings, push-constant size, workgroup size) read from its SPIR-V.
 #include <cstdint>
 #include <map>
 #include <mutex>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include <facet/core/result.h>
+#include <facet/shader/reflection.h>
 #include <facet/shader/shader_library.h>
 
 namespace facet {
@@ -27,7 +29,8 @@ struct ShaderDefine {
 
 struct Spirv {
     std::vector<uint32_t> words;
-    uint64_t key = 0;  // cache key: preprocessed source + stage + options
+    uint64_t key = 0;             // cache key: preprocessed source + stage + options
+    ShaderReflection reflection;  // what the pipeline running `words` must provide
 };
 
 struct ShaderCompilerOptions {

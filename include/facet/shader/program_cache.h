@@ -22,13 +22,14 @@ class ProgramCache {
 public:
     ProgramCache(Context& context, ShaderCompiler& compiler) : context_(context), compiler_(compiler) {}
 
-    // A compute pipeline for `shader` (path under shaders/) with push descriptors of the
-    // given types at bindings 0..n-1. The error carries the compiler's file:line message.
-    Result<const Pipeline*> compute(const std::string& shader, std::span<const VkDescriptorType> bindings,
-                                    uint32_t push_constant_bytes, std::span<const ShaderDefine> defines = {});
+    // A compute pipeline for `shader` (path under shaders/); its bindings, push-constant
+    // size and workgroup size come from the compiled shader (Pipeline::reflection()).
+    // The error carries the compiler's file:line message.
+    Result<const Pipeline*> compute(const std::string& shader, std::span<const ShaderDefine> defines = {});
 
     // A graphics pipeline from a vertex and a fragment shader compiled with the same
-    // defines; `desc` gives the fixed-function state (its SPIR-V fields are filled here).
+    // defines; `desc` gives the fixed-function state (its SPIR-V fields are filled here),
+    // the shaders their bindings and push constants.
     Result<const Pipeline*> graphics(const std::string& vertex_shader, const std::string& fragment_shader,
                                      Pipeline::GraphicsDesc desc, std::span<const ShaderDefine> defines = {});
 

@@ -28,15 +28,19 @@ void main() { uint i = gl_GlobalInvocationID.x; values[i] = i * i; }
         return 1;
     }
     facet::Context& ctx = *context.value();
-    const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
-    facet::Pipeline pipeline = facet::Pipeline::compute(ctx, spirv->words, bindings, 0, "squares");
+    auto built = facet::Pipeline::compute(ctx, spirv->words, "squares");
+    if (!built) {
+        std::fprintf(stderr, "consumer: %s\n", built.error().message.c_str());
+        return 1;
+    }
+    facet::Pipeline& pipeline = built.value();
     const uint32_t count = 256;
     facet::Buffer buffer(ctx, count * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, facet::MemoryUsage::readback, "squares");
     ctx.submit_and_wait([&](VkCommandBuffer cmd) {
         pipeline.bind(cmd);
         const facet::DescriptorWrite writes[] = {facet::DescriptorWrite::storage_buffer(buffer.handle())};
         pipeline.push_descriptors(cmd, writes);
-        vkCmdDispatch(cmd, count / 64, 1, 1);
+        vkCmdDispatch(cmd, facet::group_count(count, pipeline.workgroup_size()[0]), 1, 1);
         facet::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     });
