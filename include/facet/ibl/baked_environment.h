@@ -9,8 +9,11 @@
 // (import_baked_environment). A bake's images are the graph's own outputs, taken out of
 // its run; nothing is copied through the host except by save(). The BakedEnvironment
 // must outlive every use of its images.
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -78,7 +81,11 @@ public:
 
     // Reads the files save() wrote back into GPU images, without baking, checking each
     // against bake.json: a missing, truncated or mismatched file is an Error naming it.
-    static Result<BakedEnvironment> load(Context& context, const std::string& dir);
+    // `check` (if given) sees every file as read (its name in `dir`, its bytes) before
+    // it is used, and its Error stops the load: a cache checks its manifest's hashes
+    // there, so that each file is read once.
+    using FileCheck = std::function<Status(const std::string& name, std::span<const std::byte> bytes)>;
+    static Result<BakedEnvironment> load(Context& context, const std::string& dir, const FileCheck& check = {});
 
     // Writes facet-bake's files into `dir` (created if needed), all or none (io/output_set.h).
     // The images are read back from the GPU here.
