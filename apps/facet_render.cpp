@@ -14,6 +14,7 @@
 #include "facet_render_options.h"
 #include <facet/core/result.h>
 #include <facet/gpu/context.h>
+#include <facet/ibl/baked_environment.h>
 #include <facet/io/atomic_file.h>
 #include <facet/io/image_io.h>
 #include <facet/io/json_writer.h>
@@ -58,16 +59,23 @@ std::string describe(const Options& o, const RenderSession& session, const Rende
     if (o.job.preset) j.value("preset", *o.job.preset);
     j.end_object();
     j.begin_object("environment");
+    const BakedEnvironment* baked = session.baked();
     if (const EnvironmentSource* env = session.environment())
         j.value("source", env->name).value("content_hash", env->content_hash).value("width", env->width)
             .value("height", env->height).value("source_width", env->source_width)
             .value("source_height", env->source_height).value("ibl_intensity", double(o.job.ibl_intensity));
+    else if (baked)  // --ibl DIR: the bake's input
+        j.value("bake", o.job.ibl_dir).value("source", baked->metadata().input)
+            .value("content_hash", baked->metadata().content_hash).value("width", baked->metadata().width)
+            .value("height", baked->metadata().height).value("source_width", baked->metadata().source_width)
+            .value("source_height", baked->metadata().source_height).value("bake_key", baked->metadata().bake_key)
+            .value("ibl_intensity", double(o.job.ibl_intensity));
     else
         j.value("source", "none");
     j.end_object();
     j.value("exposure", double(f.display.exposure)).value("tonemap", tonemap_name(f.display.tonemap));
     j.value("gamma", f.display.gamma > 0 ? std::to_string(f.display.gamma) : std::string("sRGB"));
-    j.value("msaa_samples", f.samples).value("skybox", f.skybox && session.environment() != nullptr);
+    j.value("msaa_samples", f.samples).value("skybox", f.skybox && baked != nullptr);
     j.value("smith", f.height_correlated ? "height-correlated (glTF)" : "Schlick-GGX k = (r+1)^2/8");
     j.begin_array("environment_lights");
     for (const DiskLight& d : f.environment_lights) {

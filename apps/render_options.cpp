@@ -145,6 +145,13 @@ void parse_render_options(const cli::Parsed& a, RenderJob& j) {
     if (a.has("--ibl")) {
         if (a.get("--ibl").empty()) throw std::invalid_argument("--ibl needs a directory");
         j.ibl_dir = a.get("--ibl");
+        // The bake in DIR fixes the environment and everything baked from it: an option
+        // that would choose them again would be silently ignored, so it is an error.
+        for (const char* baking : {"--env", "--env-width", "--max-env-width", "--sanitize", "--ibl-size", "--ibl-samples",
+                                   "--extract-lights", "--bake-cache"})
+            if (a.has(baking))
+                throw std::invalid_argument(std::string(baking) + " and --ibl exclude each other: the environment is " +
+                                            "the one baked in " + j.ibl_dir + " (its bake.json names it)");
     }
     if (a.has("--no-bake-cache") && a.has("--bake-cache"))
         throw std::invalid_argument("--bake-cache and --no-bake-cache exclude each other");

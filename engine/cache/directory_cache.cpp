@@ -147,10 +147,12 @@ Result<std::vector<ManifestFile>> read_manifest(const fs::path& dir) {
     return files;
 }
 
-// Why the entry cannot be used, or empty when every listed file is there, whole.
-std::string check_entry(const fs::path& dir) {
+// Why the entry cannot be used, or empty when every listed file is there, whole (with
+// `contents` off: of the recorded size; the reader checks the hashes).
+std::string check_entry(const fs::path& dir, bool contents = true, std::vector<ManifestFile>* listed = nullptr) {
     auto manifest = read_manifest(dir);
     if (!manifest) return manifest.error().message;
+    if (listed) *listed = manifest.value();
     for (const ManifestFile& f : manifest.value()) {
         const fs::path path = dir / f.name;
         std::error_code ec;
@@ -158,6 +160,7 @@ std::string check_entry(const fs::path& dir) {
         if (ec) return f.name + ": missing";
         if (size != f.size)
             return f.name + ": " + std::to_string(size) + " bytes, the manifest says " + std::to_string(f.size);
+        if (!contents) continue;
         auto hash = hash_file(path);
         if (!hash) return hash.error().message;
         if (hash.value() != f.hash) return f.name + ": contents differ from the manifest (hash " + hash.value() + ", expected " + f.hash + ")";
@@ -206,8 +209,10 @@ Result<CacheEntry> DirectoryCache::find(const std::string& key) {
         auto shared = KeyLock::acquire(root / (key + ".lock"), true, true);
         if (!shared) return shared.error();
         if (!fs::exists(root / key, ec)) return entry;
-        entry.damage = check_entry(root / key);
+        std::vector<ManifestFile> listed;
+        entry.damage = check_entry(root / key, options_.check_contents, &listed);
         if (entry.damage.empty()) {
+            for (const ManifestFile& f : listed) entry.files.push_back({f.name, f.size, f.hash});
             touch(root / key / manifest_name);
             entry.path = (root / key).string();
             entry.hold = std::make_shared<KeyLock>(std::move(shared.value()));
@@ -218,12 +223,14 @@ Result<CacheEntry> DirectoryCache::find(const std::string& key) {
     auto lock = KeyLock::acquire(root / (key + ".lock"), true);
     if (!lock) return lock.error();
     if (!fs::exists(root / key, ec)) return entry;
-    entry.damage = check_entry(root / key);
+    std::vector<ManifestFile> listed;
+    entry.damage = check_entry(root / key, options_.check_contents, &listed);
     if (!entry.damage.empty()) {
         fs::remove_all(root / key, ec);
         if (ec) return Error{(root / key).string() + ": damaged (" + entry.damage + ") and cannot be removed: " + ec.message()};
         return entry;
     }
+    for (const ManifestFile& f : listed) entry.files.push_back({f.name, f.size, f.hash});
     touch(root / key / manifest_name);
     entry.path = (root / key).string();
     lock->share();
@@ -249,8 +256,10 @@ Result<CacheEntry> DirectoryCache::get_or_fill(const std::string& key, const Fil
         auto lock = KeyLock::acquire(root / (key + ".lock"), true);
         if (!lock) return lock.error();
         if (fs::exists(entry_dir, ec)) {
-            const std::string damage = check_entry(entry_dir);
+            std::vector<ManifestFile> listed;
+            const std::string damage = check_entry(entry_dir, options_.check_contents, &listed);
             if (damage.empty()) {  // another process filled it while this one waited
+                for (const ManifestFile& f : listed) entry.files.push_back({f.name, f.size, f.hash});
                 touch(entry_dir / manifest_name);
                 entry.path = entry_dir.string();
                 lock->share();
@@ -290,7 +299,10 @@ Result<CacheEntry> DirectoryCache::get_or_fill(const std::string& key, const Fil
         {
             std::ofstream out(staging / manifest_name, std::ios::trunc);
             out << manifest_header << '\n';
-            for (const auto& f : files.value()) out << f.size << ' ' << f.hash << ' ' << f.name << '\n';
+            for (const auto& f : files.value()) {
+                out << f.size << ' ' << f.hash << ' ' << f.name << '\n';
+                entry.files.push_back({f.name, f.size, f.hash});
+            }
             out.flush();
             if (!out) {
                 cleanup();
@@ -309,6 +321,30 @@ Result<CacheEntry> DirectoryCache::get_or_fill(const std::string& key, const Fil
     }
     if (Status evicted = evict(key); !evicted) return evicted.error();
     return entry;
+}
+
+Status check_cache_file(const CacheEntry& entry, const std::string& name, std::span<const std::byte> bytes) {
+    for (const CacheFile& f : entry.files) {
+        if (f.name != name) continue;
+        if (bytes.size() != f.size_bytes)
+            return Error{name + ": " + std::to_string(bytes.size()) + " bytes, the manifest says " +
+                         std::to_string(f.size_bytes)};
+        const std::string hash = Hash64{}.add(bytes.data(), bytes.size()).hex();
+        if (hash != f.hash) return Error{name + ": contents differ from the manifest (hash " + hash + ", expected " + f.hash + ")"};
+        return Ok{};
+    }
+    return Error{name + ": not in the manifest"};
+}
+
+Status DirectoryCache::remove(const std::string& key) {
+    if (!valid_key(key)) return Error{"cache key '" + key + "': only letters, digits, '-', '_' and '.' are allowed"};
+    const fs::path root(options_.directory);
+    auto lock = KeyLock::acquire(root / (key + ".lock"), true);
+    if (!lock) return lock.error();
+    std::error_code ec;
+    fs::remove_all(root / key, ec);
+    if (ec) return Error{(root / key).string() + ": cannot be removed: " + ec.message()};
+    return Ok{};
 }
 
 std::uint64_t DirectoryCache::size_bytes() const {

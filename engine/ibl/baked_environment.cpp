@@ -1,10 +1,12 @@
-// bake_environment: the whole bake in one graph, then only its outputs kept (read back,
-// checked, stored in the format that holds them, uploaded into images of their own)
-// while the graph's run and every intermediate are freed.
+// bake_environment: the whole bake in one graph, whose outputs are checked and measured
+// by passes of the same graph (ibl/baked_environment_finish.h) and then taken out of the
+// run (GraphRun::detach_image): the run, its intermediates and the upload are freed, and
+// no output passes through the host. Outputs that fit RGBA16F are converted on the GPU.
 #include <facet/ibl/baked_environment.h>
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <new>
 
@@ -15,6 +17,7 @@
 #include <facet/render/tonemap_preview.h>
 #include <facet/shader/program_cache.h>
 #include "ibl/bake_cancel.h"
+#include "ibl/baked_environment_finish.h"
 #include "ibl/baked_outputs.h"
 
 namespace facet {
@@ -27,39 +30,60 @@ namespace {
 
 using A = BakedEnvironmentAccess;
 
-const ResourceState kReadable{VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                              VK_ACCESS_2_TRANSFER_READ_BIT};
+// Where the outputs are left: readable by any shader (the frame's passes) and by copies.
+const ResourceState kKept{kBakedLayout, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                          VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT};
 
-// The graph's RGBA32F results, read back before the run is freed.
-struct ReadBack {
-    Levels environment, cube, specular, irradiance, lut;
-    ImageDesc environment_desc, cube_desc, specular_desc, irradiance_desc, lut_desc;
-    std::vector<uint8_t> preview;
+// The largest finite RGBA16F value; larger ones round to infinity (from 65520 on) or
+// down to it, either way not the value baked.
+constexpr float kHalfMax = 65504.0f;
+
+// The graph's results, owned (RGBA32F) after the run, with what their check found.
+struct Outputs {
+    Image environment, cube, specular, irradiance, lut, preview;
+    std::vector<OutputRange> ranges;  // environment, cube, specular, irradiance, lut (those present)
     std::vector<float> sh9;
     std::vector<PassTiming> timings;
 };
 
-ReadBack run_bake_graph(Context& context, ProgramCache& programs, const EnvironmentSource& source,
-                        const BakeSettings& settings, const SpecularSplit& split, const BakeCallbacks& cb,
-                        BakeMetadata& meta) {
+Outputs run_bake_graph(Context& context, ProgramCache& programs, const EnvironmentSource& source,
+                       const BakeSettings& settings, const SpecularSplit& split, const BakeCallbacks& cb,
+                       BakeMetadata& meta) {
     auto check = [](auto result) {
         if (!result) throw result.error();
         return *result;
     };
     IblBake ibl(context, programs);
     RenderGraph graph;
-    const IblImages images = check(ibl.add_passes(graph, source, settings.ibl, split));
-    ImageDesc preview_desc;
-    preview_desc.format = VK_FORMAT_R8G8B8A8_UNORM;
-    preview_desc.width = source.width;
-    preview_desc.height = source.height;
-    const ImageHandle preview = check(add_tonemap_preview_pass(
-        graph, programs, images.equirect, graph.create_image("preview", preview_desc), settings.preview_exposure));
+    IblImages images = check(ibl.add_passes(graph, source, settings.ibl, split));
+    ImageHandle preview;
+    if (settings.preview) {
+        ImageDesc preview_desc;
+        preview_desc.format = VK_FORMAT_R8G8B8A8_UNORM;
+        preview_desc.width = source.width;
+        preview_desc.height = source.height;
+        preview = check(add_tonemap_preview_pass(graph, programs, images.equirect,
+                                                 graph.create_image("preview", preview_desc), settings.preview_exposure));
+    }
+    // Specular levels below the first needed one are computed by nothing: zeros, so that
+    // the files are the same from run to run.
+    if (images.specular.valid() && meta.first_specular_level > 0)
+        images.specular = add_clear_levels_pass(graph, images.specular, meta.first_specular_level);
+    std::vector<CheckedOutput> checked;
+    for (ImageHandle* h : {&images.equirect, &images.cube, &images.specular, &images.irradiance, &images.lut})
+        if (h->valid()) checked.push_back({*h, h == &images.specular ? meta.first_specular_level : 0});
+    const BufferHandle ranges = check(add_output_range_passes(graph, programs, checked));
+    {
+        size_t i = 0;
+        for (ImageHandle* h : {&images.equirect, &images.cube, &images.specular, &images.irradiance, &images.lut})
+            if (h->valid()) *h = checked[i++].image;
+    }
     for (ImageHandle h : {images.equirect, images.cube, images.irradiance, images.specular, images.lut, preview})
-        if (h.valid()) graph.export_image(h, kReadable);
-    if (images.sh9.valid())
-        graph.export_buffer(images.sh9, {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                                         VK_ACCESS_2_TRANSFER_READ_BIT});
+        if (h.valid()) graph.export_image(h, kKept);
+    const ResourceState read_back{VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                                  VK_ACCESS_2_TRANSFER_READ_BIT};
+    graph.export_buffer(ranges, read_back);
+    if (images.sh9.valid()) graph.export_buffer(images.sh9, read_back);
     CompiledGraph compiled = graph.compile();
     if (cb.graph_dot) cb.graph_dot(compiled.to_dot());
     bake_safe_point(cb.stop, "graph");
@@ -70,29 +94,22 @@ ReadBack run_bake_graph(Context& context, ProgramCache& programs, const Environm
         if (cb.pass_done) cb.pass_done(done, total, pass);
         bake_safe_point(cb.stop, "pass");
     });
-    ReadBack r;
+    Outputs r;
     r.timings = run.timings();
-    auto read = [&](ImageHandle h, Levels& levels, ImageDesc& desc) {
-        if (!h.valid()) return;
-        const Image& image = *run.transient_image(h);
-        levels = read_levels(context, image, kReadable.layout);
-        desc = image.desc();
-    };
-    read(images.equirect, r.environment, r.environment_desc);
-    read(images.cube, r.cube, r.cube_desc);
-    read(images.specular, r.specular, r.specular_desc);
-    read(images.irradiance, r.irradiance, r.irradiance_desc);
-    read(images.lut, r.lut, r.lut_desc);
-    auto preview_bytes =
-        read_image(context, *run.transient_image(preview), 0, 0, kReadable.layout);
-    r.preview.resize(preview_bytes.size());
-    std::memcpy(r.preview.data(), preview_bytes.data(), preview_bytes.size());
+    r.ranges = read_output_ranges(context, *run.transient_buffer(ranges), checked.size());
+    auto take = [&](ImageHandle h) { return h.valid() ? run.detach_image(h) : Image{}; };
+    r.environment = take(images.equirect);
+    r.cube = take(images.cube);
+    r.specular = take(images.specular);
+    r.irradiance = take(images.irradiance);
+    r.lut = take(images.lut);
+    r.preview = take(preview);
     if (images.sh9.valid()) {
         auto bytes = read_buffer(context, *run.transient_buffer(images.sh9));
         r.sh9.resize(bytes.size() / sizeof(float));
         std::memcpy(r.sh9.data(), bytes.data(), r.sh9.size() * sizeof(float));
     }
-    return r;  // the run, the graph's images and the upload go here
+    return r;  // the run, the graph's other images and the upload go here
 }
 
 Result<BakedEnvironment> bake(Context& context, ProgramCache& programs, const EnvironmentSource& input,
@@ -166,29 +183,38 @@ Result<BakedEnvironment> bake(Context& context, ProgramCache& programs, const En
     meta.first_specular_level = first_needed_specular_level(settings.ibl.specular);
     meta.warnings = bake_warnings(analysed, settings.ibl);
 
-    ReadBack r = run_bake_graph(context, programs, baked_source, settings, split, cb, meta);
+    Outputs r = run_bake_graph(context, programs, baked_source, settings, split, cb, meta);
     materialized.reset();
     residual.reset();
     meta.timings = std::move(r.timings);
 
-    const size_t bad = count_bad_values(r.environment) + count_bad_values(r.cube) +
-                       count_bad_values(r.specular, meta.first_specular_level) + count_bad_values(r.irradiance) +
-                       count_bad_values(r.lut);
+    uint64_t bad = 0;
+    for (const OutputRange& range : r.ranges) bad += range.bad;
     if (bad) return Error{std::to_string(bad) + " baked values are NaN, Inf or negative"};
 
-    A::environment(out) = make_baked_image(context, r.environment_desc, r.environment, "baked environment");
-    auto keep = [&](const Levels& levels, ImageDesc desc, uint32_t first_level, const char* what, VkFormat& format) {
-        Stored stored = store_levels(levels, settings.format, first_level, what);
-        desc.format = format = stored.format;
-        if (!stored.note.empty()) meta.format_notes.push_back(stored.note);
-        return make_baked_image(context, desc, stored.levels, std::string("baked ") + what);
+    // Each output in the format asked for when its values fit it, else in RGBA32F, said.
+    size_t next_range = 1;  // ranges[0] is the environment's, which stays RGBA32F
+    auto keep = [&](Image image, const char* what, VkFormat& format) {
+        const float peak = r.ranges[next_range++].peak;
+        format = VK_FORMAT_R32G32B32A32_SFLOAT;
+        if (settings.format != VK_FORMAT_R16G16B16A16_SFLOAT) return image;
+        if (peak > kHalfMax) {
+            char text[200];
+            std::snprintf(text, sizeof text,
+                          "%s kept in R32G32B32A32_SFLOAT: its largest value, %.4g, exceeds R16G16B16A16_SFLOAT's "
+                          "65504",
+                          what, double(peak));
+            meta.format_notes.push_back(text);
+            return image;
+        }
+        format = VK_FORMAT_R16G16B16A16_SFLOAT;
+        return convert_to_half(context, image, kBakedLayout, std::string("baked ") + what);
     };
-    A::cube(out) = keep(r.cube, r.cube_desc, 0, "environment cube", meta.cube_format);
-    if (!r.specular.empty())
-        A::specular(out) = keep(r.specular, r.specular_desc, meta.first_specular_level, "specular", meta.specular_format);
-    if (!r.irradiance.empty())
-        A::irradiance(out) = keep(r.irradiance, r.irradiance_desc, 0, "irradiance", meta.irradiance_format);
-    if (!r.lut.empty()) A::lut(out) = keep(r.lut, r.lut_desc, 0, "brdf lut", meta.lut_format);
+    A::environment(out) = std::move(r.environment);
+    A::cube(out) = keep(std::move(r.cube), "environment cube", meta.cube_format);
+    if (r.specular) A::specular(out) = keep(std::move(r.specular), "specular", meta.specular_format);
+    if (r.irradiance) A::irradiance(out) = keep(std::move(r.irradiance), "irradiance", meta.irradiance_format);
+    if (r.lut) A::lut(out) = keep(std::move(r.lut), "brdf lut", meta.lut_format);
     A::sh9(out) = std::move(r.sh9);
     A::preview(out) = std::move(r.preview);
     A::cube_sampler(out) = Sampler(context, VK_FILTER_LINEAR, true, false, "baked cube sampler");

@@ -66,11 +66,41 @@ Result<std::string> read_text(const std::string& path) {
     return s.str();
 }
 
+// The bake's files, each read whole once and shown to the caller's check before use.
+struct BakeFiles {
+    std::string dir;
+    const BakedEnvironment::FileCheck& check;
+
+    std::string path(const std::string& name) const { return (fs::path(dir) / name).string(); }
+    Result<std::vector<std::byte>> read(const std::string& name) const {
+        const std::string p = path(name);
+        std::ifstream in(p, std::ios::binary | std::ios::ate);
+        if (!in) return Error{p + ": cannot read (" + (fs::exists(p) ? "permission denied?" : "missing") + ")"};
+        const std::streamoff size = in.tellg();
+        std::vector<std::byte> bytes(size > 0 ? size_t(size) : 0);
+        in.seekg(0);
+        in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size()));
+        if (!in) return Error{p + ": read failed"};
+        if (check)
+            if (Status ok = check(name, bytes); !ok) return ok.error();
+        return bytes;
+    }
+    Result<std::string> text(const std::string& name) const {
+        auto bytes = read(name);
+        if (!bytes) return bytes.error();
+        return std::string(reinterpret_cast<const char*>(bytes->data()), bytes->size());
+    }
+};
+
 // One KTX2 output: read, checked against its bake.json entry, uploaded.
-Result<Image> load_cube(Context& context, const std::string& dir, const Reader& entry, bool cube, VkFormat& format,
+Result<Image> load_cube(Context& context, const BakeFiles& files, const Reader& entry, bool cube, VkFormat& format,
                         const char* name) {
-    const std::string path = (fs::path(dir) / entry.text("file")).string();
-    auto k = read_ktx2(path);
+    const std::string path = files.path(entry.text("file"));
+    auto bytes = files.read(entry.text("file"));
+    if (!bytes) return bytes.error();
+    auto k = parse_ktx2(*bytes, path);
+    bytes->clear();
+    bytes->shrink_to_fit();
     if (!k) return k.error();
     const uint32_t size = entry.count("size"), levels = entry.count("mip_levels");
     format = parse_format_name(entry.text("format"));
@@ -92,8 +122,9 @@ Result<Image> load_cube(Context& context, const std::string& dir, const Reader& 
     return make_baked_image(context, desc, k->level_data, std::string("loaded ") + name);
 }
 
-Result<std::vector<float>> load_sh9(const std::string& path) {
-    auto text = read_text(path);
+Result<std::vector<float>> load_sh9(const BakeFiles& files) {
+    const std::string path = files.path("sh9.json");
+    auto text = files.text("sh9.json");
     if (!text) return text.error();
     auto doc = parse_json(*text);
     if (!doc) return Error{path + ": " + doc.error().message};
@@ -115,9 +146,10 @@ Result<std::vector<float>> load_sh9(const std::string& path) {
     return sh9;
 }
 
-Result<BakedEnvironment> load_dir(Context& context, const std::string& dir) {
-    const std::string json_path = (fs::path(dir) / "bake.json").string();
-    auto text = read_text(json_path);
+Result<BakedEnvironment> load_dir(Context& context, const std::string& dir, const BakedEnvironment::FileCheck& check) {
+    const BakeFiles files{dir, check};
+    const std::string json_path = files.path("bake.json");
+    auto text = files.text("bake.json");
     if (!text) return text.error();
     auto doc = parse_json(*text);
     if (!doc) return Error{json_path + ": " + doc.error().message};
@@ -145,7 +177,12 @@ Result<BakedEnvironment> load_dir(Context& context, const std::string& dir) {
 
     // The environment, as baked (its content hash must be the one recorded).
     const Reader env = root.child("environment");
-    const std::string env_path = (fs::path(dir) / env.text("file")).string();
+    const std::string env_path = files.path(env.text("file"));
+    if (check) {
+        // The image reader opens the file itself: the check reads it first (the one file
+        // read twice, from the page cache the second time).
+        if (auto bytes = files.read(env.text("file")); !bytes) return bytes.error();
+    }
     auto image = load_environment(env_path, {false, kMaxEnvironmentSide});
     if (!image) return image.error();
     if (image->width != meta.width || image->height != meta.height)
@@ -161,13 +198,13 @@ Result<BakedEnvironment> load_dir(Context& context, const std::string& dir) {
     }
     IblSettings& s = meta.settings;
     s.want_irradiance = s.want_specular = s.want_lut = false;
-    auto cube = load_cube(context, dir, root.child("environment_cube"), true, meta.cube_format, "environment cube");
+    auto cube = load_cube(context, files, root.child("environment_cube"), true, meta.cube_format, "environment cube");
     if (!cube) return cube.error();
     A::cube(out) = std::move(*cube);
     s.cube_size = A::cube(out).desc().width;
     if (root.optional("specular")) {
         const Reader spec = root.child("specular");
-        auto image = load_cube(context, dir, spec, true, meta.specular_format, "specular");
+        auto image = load_cube(context, files, spec, true, meta.specular_format, "specular");
         if (!image) return image.error();
         A::specular(out) = std::move(*image);
         s.want_specular = true;
@@ -187,7 +224,7 @@ Result<BakedEnvironment> load_dir(Context& context, const std::string& dir) {
     }
     if (root.optional("irradiance")) {
         const Reader irr = root.child("irradiance");
-        auto image = load_cube(context, dir, irr, true, meta.irradiance_format, "irradiance");
+        auto image = load_cube(context, files, irr, true, meta.irradiance_format, "irradiance");
         if (!image) return image.error();
         A::irradiance(out) = std::move(*image);
         s.want_irradiance = true;
@@ -200,7 +237,7 @@ Result<BakedEnvironment> load_dir(Context& context, const std::string& dir) {
         s.irradiance.blur_sigma = float(irr.number("blur_sigma"));
         s.irradiance.lowmip_size = irr.count("lowmip_size");
         if (s.irradiance.method == IrradianceMethod::sh9) {
-            auto sh9 = load_sh9((fs::path(dir) / "sh9.json").string());
+            auto sh9 = load_sh9(files);
             if (!sh9) return sh9.error();
             A::sh9(out) = std::move(*sh9);
         }
@@ -208,7 +245,7 @@ Result<BakedEnvironment> load_dir(Context& context, const std::string& dir) {
     if (root.optional("brdf_lut")) {
         const Reader lut = root.child("brdf_lut");
         VkFormat format;
-        auto image = load_cube(context, dir, lut, false, format, "brdf lut");
+        auto image = load_cube(context, files, lut, false, format, "brdf lut");
         if (!image) return image.error();
         A::lut(out) = std::move(*image);
         meta.lut_format = format;
@@ -266,9 +303,9 @@ Result<std::string> saved_bake_key(const std::string& dir) {
     return key->string();
 }
 
-Result<BakedEnvironment> BakedEnvironment::load(Context& context, const std::string& dir) {
+Result<BakedEnvironment> BakedEnvironment::load(Context& context, const std::string& dir, const FileCheck& check) {
     try {
-        return load_dir(context, dir);
+        return load_dir(context, dir, check);
     } catch (const Missing& missing) {
         return Error{(fs::path(dir) / "bake.json").string() + ": " + missing.key + " is missing or malformed"};
     } catch (const VulkanError& error) {

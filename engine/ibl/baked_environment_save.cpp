@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 
+#include <facet/gpu/transfer.h>
 #include <facet/ibl/baked_environment.h>
 #include <facet/io/atomic_file.h>
 #include <facet/io/image_io.h>
@@ -179,12 +180,16 @@ const std::vector<const char*>& baked_environment_files() {
 }
 
 Status BakedEnvironment::stage(OutputSet& outputs, const std::string& dir, const BakeStopFn& stop,
-                               std::vector<std::string>* notes) const try {
+                               std::vector<std::string>* notes, const BakeSaveOptions& options) const try {
     if (!environment_ || !cube_) return Error{dir + ": an empty BakedEnvironment cannot be saved"};
     Context& context = *context_;
     auto path = [&](const char* name) { return (fs::path(dir) / name).string(); };
+    auto is_preview = [](const std::string& name) {
+        return name == "environment.png" || name == "environment.hdr" || name == "brdf_lut.png";
+    };
     for (const char* name : baked_environment_files())
-        if (notes && fs::exists(path(name))) notes->push_back("replacing " + path(name));
+        if (notes && fs::exists(path(name)) && (options.previews || !is_preview(name)))
+            notes->push_back("replacing " + path(name));
     // Each file goes to its temporary; the previous bake stays whole until the commit.
     auto staged = [&](const char* name) {
         bake_safe_point(stop, "file");
@@ -199,10 +204,17 @@ Status BakedEnvironment::stage(OutputSet& outputs, const std::string& dir, const
     const ImageDesc& e = environment_.desc();
     std::vector<float> env(env_levels[0].size() / sizeof(float));
     std::memcpy(env.data(), env_levels[0].data(), env.size() * sizeof(float));
-    for (const char* name : {"environment.exr", "environment.hdr"})
-        if (Status s = write_hdr_image(staged(name), e.width, e.height, env); !s) return s;
-    if (!preview_.empty()) {
-        if (Status s = write_ldr_image(staged("environment.png"), e.width, e.height, preview_); !s) return s;
+    if (Status s = write_hdr_image(staged("environment.exr"), e.width, e.height, env); !s) return s;
+    const char* no_previews = "previews are not written here";
+    if (!options.previews) remove_old("environment.hdr", no_previews);
+    else if (Status s = write_hdr_image(staged("environment.hdr"), e.width, e.height, env); !s) return s;
+    if (!options.previews) {
+        remove_old("environment.png", no_previews);
+    } else if (preview_) {
+        const auto bytes = read_image(context, preview_, 0, 0, kBakedLayout);
+        std::vector<uint8_t> rgba8(bytes.size());
+        std::memcpy(rgba8.data(), bytes.data(), bytes.size());
+        if (Status s = write_ldr_image(staged("environment.png"), e.width, e.height, rgba8); !s) return s;
     }
     auto ktx2 = [&](const char* name, const Image* image, const char* why_absent) -> Status {
         if (!image) {
@@ -215,7 +227,9 @@ Status BakedEnvironment::stage(OutputSet& outputs, const std::string& dir, const
     if (Status s = ktx2("specular.ktx2", specular(), "this bake has no specular cube"); !s) return s;
     if (Status s = ktx2("irradiance.ktx2", irradiance(), "this bake has no irradiance"); !s) return s;
     if (Status s = ktx2("brdf_lut.ktx2", lut(), "this bake has no BRDF LUT"); !s) return s;
-    if (lut_) {
+    if (!options.previews) {
+        remove_old("brdf_lut.png", no_previews);
+    } else if (lut_) {
         // LUT preview: A, B and E_avg lie in [0, 1]; shown linearly, roughness 0 on the top row.
         const Levels levels = read_levels(context, lut_, kBakedLayout);
         const bool half = lut_.desc().format == VK_FORMAT_R16G16B16A16_SFLOAT;
@@ -247,10 +261,10 @@ Status BakedEnvironment::stage(OutputSet& outputs, const std::string& dir, const
     return Error{dir + ": reading the baked images back: " + error.what(), error.result()};
 }
 
-Status BakedEnvironment::save(const std::string& dir) const {
+Status BakedEnvironment::save(const std::string& dir, const BakeSaveOptions& options) const {
     if (Status s = ensure_directory(dir); !s) return s;
     OutputSet outputs;
-    if (Status s = stage(outputs, dir); !s) return s;
+    if (Status s = stage(outputs, dir, {}, nullptr, options); !s) return s;
     return outputs.commit();
 }
 

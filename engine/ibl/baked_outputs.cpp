@@ -9,13 +9,6 @@
 
 namespace facet {
 
-namespace {
-
-// The largest finite RGBA16F value; larger ones round to infinity (from 65520 on) or
-// down to it, either way not the value baked.
-constexpr float kHalfMax = 65504.0f;
-
-}  // namespace
 
 Levels read_levels(Context& context, const Image& image, VkImageLayout layout) {
     Levels levels;
@@ -42,60 +35,6 @@ Image make_baked_image(Context& context, const ImageDesc& desc, const Levels& le
                          VK_IMAGE_LAYOUT_UNDEFINED, kBakedLayout);
     }
     return image;
-}
-
-size_t count_bad_values(const Levels& rgba32f, uint32_t first_level) {
-    size_t bad = 0;
-    for (size_t m = first_level; m < rgba32f.size(); ++m) {
-        const size_t n = rgba32f[m].size() / sizeof(float);
-        for (size_t i = 0; i < n; ++i) {
-            float v;
-            std::memcpy(&v, rgba32f[m].data() + i * sizeof(float), sizeof v);
-            bad += !std::isfinite(v) || v < 0;
-        }
-    }
-    return bad;
-}
-
-Stored store_levels(const Levels& rgba32f, VkFormat requested, uint32_t first_level, const std::string& what) {
-    Stored out;
-    out.levels = rgba32f;
-    for (size_t m = 0; m < out.levels.size() && m < first_level; ++m)
-        std::fill(out.levels[m].begin(), out.levels[m].end(), std::byte{0});
-    if (requested != VK_FORMAT_R16G16B16A16_SFLOAT) {
-        out.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-        return out;
-    }
-    float peak = 0;
-    for (const auto& level : out.levels)
-        for (size_t i = 0; i < level.size() / sizeof(float); ++i) {
-            float v;
-            std::memcpy(&v, level.data() + i * sizeof(float), sizeof v);
-            peak = std::max(peak, std::abs(v));
-        }
-    if (peak > kHalfMax) {
-        char text[200];
-        std::snprintf(text, sizeof text,
-                      "%s kept in R32G32B32A32_SFLOAT: its largest value, %.4g, exceeds R16G16B16A16_SFLOAT's "
-                      "65504",
-                      what.c_str(), double(peak));
-        out.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-        out.note = text;
-        return out;
-    }
-    out.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-    for (auto& level : out.levels) {
-        const size_t n = level.size() / sizeof(float);
-        std::vector<std::byte> half(n * 2);
-        for (size_t i = 0; i < n; ++i) {
-            float v;
-            std::memcpy(&v, level.data() + i * sizeof(float), sizeof v);
-            const uint16_t h = float_to_half(v);
-            std::memcpy(half.data() + i * 2, &h, 2);
-        }
-        level = std::move(half);
-    }
-    return out;
 }
 
 const char* format_name(VkFormat format) {

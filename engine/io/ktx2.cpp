@@ -333,12 +333,16 @@ Status write_ktx2(const std::string& path, const Ktx2Image& image) {
     });
 }
 
+Result<Ktx2Image> parse_ktx2(const std::vector<std::byte>& bytes, const std::string& path) {
+    Ktx2Image image;
+    if (std::string problem = parse(bytes, image); !problem.empty()) return Error{path + ": " + problem};
+    return image;
+}
+
 Result<Ktx2Image> read_ktx2(const std::string& path) {
     Result<std::vector<std::byte>> data = read_whole_file(path);
     if (!data) return data.error();
-    Ktx2Image image;
-    if (std::string problem = parse(*data, image); !problem.empty()) return Error{path + ": " + problem};
-    return image;
+    return parse_ktx2(*data, path);
 }
 
 uint16_t float_to_half(float f) {

@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <optional>
+#include <span>
 
 #include <facet/gpu/context.h>
 #include <facet/gpu/device_limits.h>
@@ -31,6 +33,7 @@ const Scene& RenderSession::scene() const { return state_->scene; }
 const CameraView& RenderSession::camera() const { return state_->frame.camera; }
 const FrameSettings& RenderSession::frame() const { return state_->frame; }
 const EnvironmentSource* RenderSession::environment() const { return state_->env ? &*state_->env : nullptr; }
+const BakedEnvironment* RenderSession::baked() const { return state_->baked ? &*state_->baked : nullptr; }
 const std::vector<PassTiming>& RenderSession::bake_timings() const { return state_->bake_timings; }
 size_t RenderSession::pipeline_variants() const { return state_->renderer->pipeline_variants(); }
 
@@ -67,6 +70,7 @@ Result<BakedEnvironment> bake_for_session(Context& context, RenderSession::State
     BakeSettings settings;
     settings.ibl = ibl_settings_for_scene(job.ibl, scene_needs(s.scene), job.frame.multiscatter);
     settings.extract_lights = job.extract_lights;
+    settings.preview = false;  // environment.png: nothing here shows or saves it
     BakeCallbacks callbacks;
     callbacks.progress = say;
     callbacks.pass_done = [&](uint32_t done, uint32_t total, const std::string& pass) {
@@ -80,20 +84,37 @@ Result<BakedEnvironment> bake_for_session(Context& context, RenderSession::State
     BakeSettings resolved = settings;
     resolved.ibl = resolved_ibl_settings(settings.ibl, *s.env);
     const std::string key = bake_key(*s.env, resolved);
-    DirectoryCache cache({job.bake_cache_dir, job.bake_cache_max_bytes});
-    bool bake_failed = false;  // the bake's own error passes through; the cache's names the folder
-    auto entry = cache.get_or_fill(key, [&](const std::string& dir) -> Status {
-        auto baked = bake();
-        if (!baked) {
-            bake_failed = true;
-            return baked.error();
-        }
-        return baked->save(dir);
-    });
-    if (!entry) return bake_failed ? entry.error() : Error{"bake cache " + job.bake_cache_dir + ": " + entry.error().message};
-    if (!entry->damage.empty()) say("bake cache: entry " + key + " was damaged (" + entry->damage + "); baked again");
-    say(std::string("bake cache: ") + (entry->built ? "stored " : "using ") + entry->path);
-    return BakedEnvironment::load(context, entry->path);
+    // The cache checks sizes; the load below checks each file's hash as it reads it, so a
+    // hit reads every file once.
+    DirectoryCache cache({job.bake_cache_dir, job.bake_cache_max_bytes, false});
+    // A damaged entry found while loading is removed and filled again, once.
+    for (int attempt = 0;; ++attempt) {
+        bool bake_failed = false;  // the bake's own error passes through; the cache's names the folder
+        std::optional<BakedEnvironment> fresh;
+        auto entry = cache.get_or_fill(key, [&](const std::string& dir) -> Status {
+            auto baked = bake();
+            if (!baked) {
+                bake_failed = true;
+                return baked.error();
+            }
+            // Only what load() reads: no previews in the cache.
+            if (Status saved = baked->save(dir, BakeSaveOptions{false}); !saved) return saved;
+            fresh = std::move(baked).value();
+            return Ok{};
+        });
+        if (!entry) return bake_failed ? entry.error() : Error{"bake cache " + job.bake_cache_dir + ": " + entry.error().message};
+        if (!entry->damage.empty()) say("bake cache: entry " + key + " was damaged (" + entry->damage + "); baked again");
+        say(std::string("bake cache: ") + (entry->built ? "stored " : "using ") + entry->path);
+        if (fresh) return std::move(*fresh);  // the images just saved are still on the GPU
+        auto loaded = BakedEnvironment::load(context, entry->path, [&](const std::string& name, std::span<const std::byte> bytes) {
+            return check_cache_file(*entry, name, bytes);
+        });
+        if (loaded || attempt > 0) return loaded;
+        say("bake cache: entry " + key + " was damaged (" + loaded.error().message + "); baking again");
+        entry->hold.reset();
+        if (Status removed = cache.remove(key); !removed)
+            return Error{"bake cache " + job.bake_cache_dir + ": " + removed.error().message};
+    }
 }
 
 }  // namespace
@@ -137,7 +158,9 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
     compiler_options.disk_cache_dir = job.shader_cache_dir;
     s->compiler = std::make_unique<ShaderCompiler>(compiler_options);
     s->programs = std::make_unique<ProgramCache>(context, *s->compiler);
-    if (job.env != "none") {
+    // With a saved bake (--ibl DIR) the environment is the bake's: job.env is not read.
+    const bool saved_bake = !job.ibl_dir.empty();
+    if (!saved_bake && job.env != "none") {
         auto env = resolve_environment(job.env, job.env_width, {job.sanitize, job.max_env_width});
         if (!env) return env.error();
         s->env = std::move(env).value();
@@ -153,13 +176,15 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
             if (Status st = materialize_environment(context, *s->programs, *s->env); !st) return st.error();
             s->original_texels = s->env->image.rgba;
         }
+    }
+    if (saved_bake || job.env != "none") {
         auto baked = bake_for_session(context, *s, say);
         if (!baked) return baked.error();
         s->baked = std::move(baked).value();
         const BakeMetadata& m = s->baked->metadata();
         s->frame.environment_lights = s->baked->lights();
         s->frame.environment_light_level = m.light_split_level;
-        if (job.extract_lights) {
+        if (job.extract_lights && !saved_bake) {
             say("extracted " + std::to_string(s->baked->lights().size()) + " light(s) from " + job.env + ", " +
                 std::to_string(int(std::lround(100 * m.extracted_power_fraction))) + "% of its power");
             for (const std::string& note : m.extraction_notes) say("light extraction: " + note);

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <span>
 #include <string>
 #include <thread>
 
@@ -114,6 +115,59 @@ TEST(DirectoryCache, DamagedEntriesAreReportedAndRebuiltNeverUsed) {
     ASSERT_TRUE(no_manifest);
     EXPECT_NE(no_manifest->damage.find("no manifest"), std::string::npos) << no_manifest->damage;
     EXPECT_EQ(calls, 5);  // the refused repair built nothing
+    fs::remove_all(root);
+}
+
+// check_contents off: the cache checks sizes only and hands the manifest to the reader,
+// which checks what it reads (check_cache_file) and removes an entry that differs.
+TEST(DirectoryCache, AReaderChecksTheContentsItReads) {
+    const fs::path root = fresh_dir("reader");
+    CacheOptions options{root.string()};
+    options.check_contents = false;
+    DirectoryCache cache(options);
+    int calls = 0;
+    auto filled = cache.get_or_fill("k", filler("k", &calls));
+    ASSERT_TRUE(filled) << filled.error().message;
+    ASSERT_EQ(filled->files.size(), 2u);
+    EXPECT_EQ(filled->files[0].name, "a.bin");
+    EXPECT_EQ(filled->files[0].size_bytes, 1000u);
+    EXPECT_EQ(filled->files[1].name, "sub/b.json");
+    filled->hold.reset();
+    auto as_bytes = [](const std::string& text) {
+        return std::span<const std::byte>(reinterpret_cast<const std::byte*>(text.data()), text.size());
+    };
+
+    // Same size, one byte changed: the cache (sizes only) hands it out, the reader finds it.
+    write(root / "k" / "a.bin", std::string(500, 'k') + "!" + std::string(499, 'k'));
+    auto hit = cache.get_or_fill("k", filler("k", &calls));
+    ASSERT_TRUE(hit) << hit.error().message;
+    EXPECT_FALSE(hit->built);
+    EXPECT_TRUE(hit->damage.empty());
+    const std::string a = read(fs::path(hit->path) / "a.bin");
+    Status checked = check_cache_file(*hit, "a.bin", as_bytes(a));
+    ASSERT_FALSE(checked);
+    EXPECT_NE(checked.error().message.find("a.bin: contents differ from the manifest"), std::string::npos)
+        << checked.error().message;
+    EXPECT_TRUE(check_cache_file(*hit, "sub/b.json", as_bytes(read(fs::path(hit->path) / "sub" / "b.json"))));
+    EXPECT_FALSE(check_cache_file(*hit, "c.bin", as_bytes("x")));
+    EXPECT_FALSE(check_cache_file(*hit, "a.bin", as_bytes(std::string(1000, 'k') + "x")));  // a size differs
+
+    // Removed, then built again whole.
+    hit->hold.reset();
+    ASSERT_TRUE(cache.remove("k"));
+    EXPECT_FALSE(fs::exists(root / "k"));
+    auto rebuilt = cache.get_or_fill("k", filler("k", &calls));
+    ASSERT_TRUE(rebuilt) << rebuilt.error().message;
+    EXPECT_TRUE(rebuilt->built);
+    EXPECT_TRUE(check_cache_file(*rebuilt, "a.bin", as_bytes(read(fs::path(rebuilt->path) / "a.bin"))));
+    EXPECT_EQ(calls, 2);
+    // A truncated file is still found by the cache itself.
+    rebuilt->hold.reset();
+    fs::resize_file(root / "k" / "a.bin", 10);
+    auto truncated = cache.find("k");
+    ASSERT_TRUE(truncated);
+    EXPECT_TRUE(truncated->path.empty());
+    EXPECT_NE(truncated->damage.find("a.bin: 10 bytes"), std::string::npos) << truncated->damage;
     fs::remove_all(root);
 }
 

@@ -20,9 +20,26 @@ namespace fs = std::filesystem;
 using facet::test::Ran;
 using facet::test::TempDir;
 
-const std::string scene = " --model builtin:sphere --env builtin:sky --env-width 64 --ibl-size 16 --width 64 --height 48";
+const std::string model = " --model builtin:sphere --width 64 --height 48";
+const std::string scene = model + " --env builtin:sky --env-width 64 --ibl-size 16";
 
 Ran render(const std::string& args) { return facet::test::run_command(std::string(FACET_RENDER_PATH) + scene + args); }
+// With --ibl DIR the environment is the bake's: no --env or bake settings.
+Ran render_with_bake(const std::string& args) {
+    return facet::test::run_command(std::string(FACET_RENDER_PATH) + model + args);
+}
+
+std::string read_text(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+fs::path only_entry(const fs::path& cache) {
+    fs::path entry;
+    for (const auto& e : fs::directory_iterator(cache))
+        if (e.is_directory() && e.path().filename().string()[0] != '.') entry = e.path();
+    return entry;
+}
 
 std::vector<unsigned char> pixels(const fs::path& path) {
     auto in = OIIO::ImageInput::open(path.string());
@@ -57,13 +74,13 @@ TEST(RenderBakeCache, ASavedBakeRendersTheSameImageWithoutBaking) {
     Ran bake = facet::test::run_command(std::string(FACET_BAKE_PATH) + " builtin:sky --width 64 --size 16 --out " +
                                         (dir / "bake").string());
     ASSERT_EQ(bake.status, 0) << bake.output;
-    Ran loaded = render(" --ibl " + (dir / "bake").string() + " --out " + (dir / "loaded.png").string());
+    Ran loaded = render_with_bake(" --ibl " + (dir / "bake").string() + " --out " + (dir / "loaded.png").string());
     ASSERT_EQ(loaded.status, 0) << loaded.output;
     EXPECT_EQ(count(loaded.output, "baking ["), 0u) << loaded.output;
     EXPECT_LE(differing(pixels(dir / "fresh.png"), pixels(dir / "loaded.png"), 1), 0.001);
 
     // A bake that is not there: one error naming the file, nothing written.
-    Ran missing = render(" --ibl " + (dir / "nowhere").string() + " --out " + (dir / "missing.png").string());
+    Ran missing = render_with_bake(" --ibl " + (dir / "nowhere").string() + " --out " + (dir / "missing.png").string());
     EXPECT_EQ(missing.status, 1) << missing.output;
     EXPECT_NE(missing.output.find((dir / "nowhere").string()), std::string::npos) << missing.output;
     EXPECT_FALSE(fs::exists(dir / "missing.png"));
@@ -82,17 +99,85 @@ TEST(RenderBakeCache, TheSecondRunBakesNothingAndADamagedEntryIsRebuilt) {
     EXPECT_EQ(count(second.output, "baking ["), 0u) << second.output;
     EXPECT_EQ(pixels(dir / "first.png"), pixels(dir / "second.png"));
 
-    // Damage the entry's specular cube: detected, reported, baked again, never used.
-    fs::path entry;
-    for (const auto& e : fs::directory_iterator(dir / "cache"))
-        if (e.is_directory() && e.path().filename().string()[0] != '.') entry = e.path();
+    // The entry holds what a load reads, no previews.
+    fs::path entry = only_entry(dir / "cache");
     ASSERT_FALSE(entry.empty());
+    EXPECT_TRUE(fs::exists(entry / "specular.ktx2"));
+    EXPECT_TRUE(fs::exists(entry / "bake.json"));
+    for (const char* preview : {"environment.png", "environment.hdr", "brdf_lut.png"})
+        EXPECT_FALSE(fs::exists(entry / preview)) << preview;
+
+    // Damage the entry's specular cube: detected, reported, baked again, never used.
     fs::resize_file(entry / "specular.ktx2", fs::file_size(entry / "specular.ktx2") / 2);
     Ran third = render(cache + " --out " + (dir / "third.png").string());
     ASSERT_EQ(third.status, 0) << third.output;
     EXPECT_NE(third.output.find("was damaged (specular.ktx2:"), std::string::npos) << third.output;
     EXPECT_GT(count(third.output, "baking ["), 0u);
     EXPECT_EQ(pixels(dir / "first.png"), pixels(dir / "third.png"));
+}
+
+// The cache checks sizes, the load each file's hash as it reads it: one flipped byte in the
+// middle of the specular cube (same size) is found, reported and baked again.
+TEST(RenderBakeCache, AFlippedByteInACachedSpecularCubeIsFoundAndRebuilt) {
+    TempDir dir("render_cache_flip");
+    const std::string cache = " --bake-cache " + (dir / "cache").string();
+    Ran first = render(cache + " --out " + (dir / "first.png").string());
+    ASSERT_EQ(first.status, 0) << first.output;
+    const fs::path entry = only_entry(dir / "cache");
+    ASSERT_FALSE(entry.empty());
+    const fs::path specular = entry / "specular.ktx2";
+    const auto size = fs::file_size(specular);
+    {
+        std::fstream f(specular, std::ios::in | std::ios::out | std::ios::binary);
+        f.seekg(std::streamoff(size / 2));
+        const char byte = char(f.get() ^ 0x10);
+        f.seekp(std::streamoff(size / 2));
+        f.put(byte);
+    }
+    ASSERT_EQ(fs::file_size(specular), size);
+    Ran second = render(cache + " --out " + (dir / "second.png").string());
+    ASSERT_EQ(second.status, 0) << second.output;
+    EXPECT_NE(second.output.find("was damaged (specular.ktx2: contents differ"), std::string::npos) << second.output;
+    EXPECT_GT(count(second.output, "baking ["), 0u) << second.output;
+    EXPECT_NE(second.output.find("bake cache: stored"), std::string::npos) << second.output;
+    EXPECT_EQ(pixels(dir / "first.png"), pixels(dir / "second.png"));
+    // The rebuilt entry is whole: the next run uses it.
+    Ran third = render(cache + " --out " + (dir / "third.png").string());
+    ASSERT_EQ(third.status, 0) << third.output;
+    EXPECT_EQ(count(third.output, "baking ["), 0u) << third.output;
+    EXPECT_EQ(count(third.output, "damaged"), 0u) << third.output;
+}
+
+// With --ibl DIR the environment is the bake's: NAME.json names the bake and its input,
+// the skybox is the bake's cube (the image equals a fresh render of that environment),
+// and --env beside --ibl is an error naming both.
+TEST(RenderBakeCache, WithASavedBakeTheEnvironmentIsTheBakes) {
+    TempDir dir("render_ibl_env");
+    Ran bake = facet::test::run_command(std::string(FACET_BAKE_PATH) + " builtin:white --width 64 --size 16 --out " +
+                                        (dir / "bake").string());
+    ASSERT_EQ(bake.status, 0) << bake.output;
+    Ran fresh = facet::test::run_command(std::string(FACET_RENDER_PATH) + model +
+                                         " --env builtin:white --env-width 64 --ibl-size 16 --no-bake-cache --out " +
+                                         (dir / "fresh.png").string());
+    ASSERT_EQ(fresh.status, 0) << fresh.output;
+    Ran loaded = render_with_bake(" --ibl " + (dir / "bake").string() + " --out " + (dir / "loaded.png").string());
+    ASSERT_EQ(loaded.status, 0) << loaded.output;
+    EXPECT_LE(differing(pixels(dir / "fresh.png"), pixels(dir / "loaded.png"), 1), 0.001);
+    // Not the default environment's image (builtin:sky differs from builtin:white).
+    Ran sky = render(" --no-bake-cache --out " + (dir / "sky.png").string());
+    ASSERT_EQ(sky.status, 0) << sky.output;
+    EXPECT_GT(differing(pixels(dir / "sky.png"), pixels(dir / "loaded.png"), 1), 0.1);
+    const std::string json = read_text(dir / "loaded.json");
+    EXPECT_NE(json.find("\"bake\": \"" + (dir / "bake").string() + "\""), std::string::npos) << json;
+    EXPECT_NE(json.find("\"source\": \"builtin:white\""), std::string::npos) << json;
+    EXPECT_EQ(json.find("builtin:sky"), std::string::npos) << json;
+    EXPECT_NE(json.find("\"skybox\": true"), std::string::npos) << json;
+
+    Ran both = render_with_bake(" --env builtin:sky --ibl " + (dir / "bake").string() + " --out " +
+                                (dir / "both.png").string());
+    EXPECT_NE(both.status, 0) << both.output;
+    EXPECT_NE(both.output.find("--env and --ibl"), std::string::npos) << both.output;
+    EXPECT_FALSE(fs::exists(dir / "both.png"));
 }
 
 TEST(RenderBakeCache, TwoProcessesFillingOneEntryBothFinishWithTheSameImage) {

@@ -30,6 +30,7 @@ struct BakeSettings {
     double target_error = 0;
     float roughness_min = 0.0f, roughness_max = 1.0f;
     float preview_exposure = 1.0f;  // environment.png
+    bool preview = true;            // environment.png made at all (not needed to render)
 };
 
 // A line of progress (passes, the budget's measurements, ...).

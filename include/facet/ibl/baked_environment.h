@@ -4,11 +4,16 @@
 // images, the upload, the samplers of the passes) is freed when bake_environment returns.
 // It can be saved as facet-bake's files (design.md) and loaded back without baking.
 //
-// Every image is left in VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, with usage SAMPLED,
-// TRANSFER_SRC and TRANSFER_DST, ready to be imported into a frame's graph
-// (import_baked_environment). The BakedEnvironment must outlive every use of its images.
+// Every image is left in VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, with usage (at least)
+// SAMPLED and TRANSFER_SRC, ready to be imported into a frame's graph
+// (import_baked_environment). A bake's images are the graph's own outputs, taken out of
+// its run; nothing is copied through the host except by save(). The BakedEnvironment
+// must outlive every use of its images.
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -61,6 +66,13 @@ struct BakeMetadata {
     uint32_t passes = 0;
 };
 
+// What BakedEnvironment::save writes.
+struct BakeSaveOptions {
+    // environment.png, environment.hdr and brdf_lut.png: for people and other tools;
+    // load() reads none of them (a cache entry leaves them out).
+    bool previews = true;
+};
+
 class BakedEnvironment {
 public:
     BakedEnvironment(BakedEnvironment&&) noexcept;
@@ -69,15 +81,20 @@ public:
 
     // Reads the files save() wrote back into GPU images, without baking, checking each
     // against bake.json: a missing, truncated or mismatched file is an Error naming it.
-    static Result<BakedEnvironment> load(Context& context, const std::string& dir);
+    // `check` (if given) sees every file as read (its name in `dir`, its bytes) before
+    // it is used, and its Error stops the load: a cache checks its manifest's hashes
+    // there, so that each file is read once.
+    using FileCheck = std::function<Status(const std::string& name, std::span<const std::byte> bytes)>;
+    static Result<BakedEnvironment> load(Context& context, const std::string& dir, const FileCheck& check = {});
 
     // Writes facet-bake's files into `dir` (created if needed), all or none (io/output_set.h).
-    Status save(const std::string& dir) const;
+    // The images are read back from the GPU here.
+    Status save(const std::string& dir, const BakeSaveOptions& options = {}) const;
     // The same files staged into the caller's OutputSet, which the caller commits (a
     // program that blocks signals around the commit); `stop` is asked between files.
     // `notes` (if given) receives what happens to files an earlier bake left there.
     Status stage(OutputSet& outputs, const std::string& dir, const BakeStopFn& stop = {},
-                 std::vector<std::string>* notes = nullptr) const;
+                 std::vector<std::string>* notes = nullptr, const BakeSaveOptions& options = {}) const;
 
     // The environment as baked: equirect RGBA32F (row 0 = +Y), one level.
     const Image& environment() const { return environment_; }
@@ -98,19 +115,19 @@ public:
     const BakeMetadata& metadata() const { return metadata_; }
     // Linear, mipmapped, clamped: how the frame samples the cubes.
     const Sampler& cube_sampler() const { return cube_sampler_; }
-    // The tone-mapped preview of the environment (RGBA8, environment size); empty for a
-    // loaded bake (environment.png is then not rewritten by save()).
-    const std::vector<uint8_t>& preview() const { return preview_; }
+    // The tone-mapped preview of the environment (RGBA8, environment size); nullptr for a
+    // loaded bake or one baked without it (BakeSettings::preview): environment.png is then
+    // not written by save().
+    const Image* preview() const { return preview_ ? &preview_ : nullptr; }
 
 private:
     friend struct BakedEnvironmentAccess;
     BakedEnvironment() = default;
     Context* context_ = nullptr;  // the images' (save() reads them back through it)
-    Image environment_, cube_, specular_, irradiance_, lut_;
+    Image environment_, cube_, specular_, irradiance_, lut_, preview_;
     Sampler cube_sampler_;
     std::vector<float> sh9_;
     std::vector<DiskLight> lights_;
-    std::vector<uint8_t> preview_;
     BakeMetadata metadata_;
 };
 

@@ -41,6 +41,8 @@ Status write_ktx2(const std::string& path, const Ktx2Image& image);
 // Validates the whole file before trusting any offset or length; a truncated, corrupt or
 // unsupported file gives an Error naming the file and the problem.
 Result<Ktx2Image> read_ktx2(const std::string& path);
+// The same from the file's bytes, already read (`path` names it in errors).
+Result<Ktx2Image> parse_ktx2(const std::vector<std::byte>& bytes, const std::string& path);
 
 // IEEE 754 binary32 <-> binary16, rounding to nearest even; infinities, NaNs (kept
 // quiet, top payload bits kept) and denormals handled. For converting RGBA32F to RGBA16F.

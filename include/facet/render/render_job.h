@@ -22,6 +22,7 @@
 
 namespace facet {
 
+class BakedEnvironment;
 class Context;
 class GpuScene;
 class ProgramCache;
@@ -45,7 +46,8 @@ struct RenderJob {
     bool extract_lights = false;  // suns and lamps out of the map, shaded as disk lights
     std::string shader_dir;       // read shaders from here (hot reload); empty: embedded (programs: FACET_SHADER_DIR)
     std::string shader_cache_dir; // on-disk SPIR-V cache (apps/shader_cache.h); empty: none
-    std::string ibl_dir;          // a saved bake (facet-bake's files) used instead of baking
+    std::string ibl_dir;          // a saved bake (facet-bake's files) used instead of baking: `env` and the
+                                  // bake's settings are then not read (the bake's input is the environment)
     std::string bake_cache_dir;   // bakes kept by bake key (facet/cache/directory_cache.h); empty: none
     uint64_t bake_cache_max_bytes = 4ull << 30;
 };
@@ -113,7 +115,11 @@ public:
     const Scene& scene() const;
     const CameraView& camera() const;
     const FrameSettings& frame() const;
-    const EnvironmentSource* environment() const;  // nullptr without IBL
+    // The environment as resolved and baked here; nullptr without IBL and with a saved
+    // bake (RenderJob::ibl_dir), whose environment baked() describes.
+    const EnvironmentSource* environment() const;
+    // The image-based lighting in use (its metadata name the bake's input); nullptr without.
+    const BakedEnvironment* baked() const;
     const std::vector<PassTiming>& bake_timings() const;
     size_t pipeline_variants() const;
 

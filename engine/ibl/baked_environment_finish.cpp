@@ -1,0 +1,105 @@
+#include "ibl/baked_environment_finish.h"
+
+#include <cstring>
+
+#include <facet/gpu/context.h>
+#include <facet/gpu/pipeline.h>
+#include <facet/gpu/transfer.h>
+#include <facet/graph/graph_run.h>
+#include <facet/shader/program_cache.h>
+#include "ibl/baked_outputs.h"
+
+namespace facet {
+
+ImageHandle add_clear_levels_pass(RenderGraph& graph, ImageHandle image, uint32_t level_count) {
+    ImageHandle cleared = image;
+    const ImageRange levels{0, level_count, 0, all_remaining};
+    graph.add_transfer_pass("clear unused levels", [&](PassBuilder& b) { cleared = b.copy_to(image, levels); },
+                            [image, level_count](PassContext& pc) {
+                                const VkClearColorValue zero{};
+                                const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, level_count, 0,
+                                                                    VK_REMAINING_ARRAY_LAYERS};
+                                vkCmdClearColorImage(pc.cmd(), pc.image(image), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                                     &zero, 1, &range);
+                            });
+    return cleared;
+}
+
+Result<BufferHandle> add_output_range_passes(RenderGraph& graph, ProgramCache& programs,
+                                             std::vector<CheckedOutput>& outputs) {
+    const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+    auto range = programs.compute("ibl/output_range.comp", bindings, sizeof(uint32_t));
+    if (!range) return range.error();
+    BufferHandle ranges = graph.create_buffer("output ranges", {VkDeviceSize(outputs.size() * 2 * sizeof(uint32_t))});
+    graph.add_transfer_pass("output ranges clear", [&](PassBuilder& b) { ranges = b.write(ranges, Access::transfer_dst); },
+                            [ranges](PassContext& pc) { vkCmdFillBuffer(pc.cmd(), pc.buffer(ranges), 0, VK_WHOLE_SIZE, 0); });
+    for (uint32_t slot = 0; slot < outputs.size(); ++slot) {
+        CheckedOutput& out = outputs[slot];
+        const ImageDesc desc = graph.resource(out.image).image_desc;
+        const std::string name = "output range (" + graph.resource(out.image).name + ")";
+        const ImageRange levels{out.first_level, all_remaining, 0, all_remaining};
+        graph.add_compute_pass(name, [&](PassBuilder& b) {
+            out.image = b.read_storage(out.image, levels);
+            ranges = b.write(ranges, Access::storage_read_write);
+        }, [p = *range, image = out.image, ranges, desc, first = out.first_level, slot](PassContext& pc) {
+            p->bind(pc.cmd());
+            p->push_constants(pc.cmd(), slot);
+            for (uint32_t m = first; m < desc.mip_levels; ++m) {
+                const DescriptorWrite writes[] = {
+                    DescriptorWrite::storage_image(pc.view(image, ImageRange::mip(m), VK_IMAGE_VIEW_TYPE_2D_ARRAY)),
+                    DescriptorWrite::storage_buffer(pc.buffer(ranges))};
+                p->push_descriptors(pc.cmd(), writes);
+                vkCmdDispatch(pc.cmd(), (desc.mip_width(m) + 7) / 8, (desc.mip_height(m) + 7) / 8, desc.array_layers);
+            }
+        });
+    }
+    return ranges;
+}
+
+std::vector<OutputRange> read_output_ranges(Context& context, const Buffer& ranges, size_t count) {
+    const std::vector<std::byte> bytes = read_buffer(context, ranges);
+    std::vector<OutputRange> out(count);
+    for (size_t i = 0; i < count && (2 * i + 2) * sizeof(uint32_t) <= bytes.size(); ++i) {
+        uint32_t peak_bits, bad;
+        std::memcpy(&peak_bits, bytes.data() + 2 * i * sizeof(uint32_t), sizeof peak_bits);
+        std::memcpy(&bad, bytes.data() + (2 * i + 1) * sizeof(uint32_t), sizeof bad);
+        std::memcpy(&out[i].peak, &peak_bits, sizeof peak_bits);
+        out[i].bad = bad;
+    }
+    return out;
+}
+
+Image convert_to_half(Context& context, const Image& rgba32f, VkImageLayout layout, const std::string& name) {
+    ImageDesc desc = rgba32f.desc();
+    desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    Image half(context, desc,
+               VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, name);
+    const VkImageSubresourceRange all = whole_range(desc);
+    context.submit_and_wait([&](VkCommandBuffer cmd) {
+        // The graph's run has completed (its fence was waited on); its writes were made
+        // available by the final barriers, so the blit's reads wait on those.
+        image_barrier(cmd, rgba32f.handle(), all, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                      VK_ACCESS_2_TRANSFER_READ_BIT);
+        image_barrier(cmd, half.handle(), all, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                      VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        std::vector<VkImageBlit> regions;
+        for (uint32_t m = 0; m < desc.mip_levels; ++m) {
+            VkImageBlit r{};
+            r.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m, 0, desc.array_layers};
+            r.dstSubresource = r.srcSubresource;
+            r.srcOffsets[1] = r.dstOffsets[1] = {int32_t(desc.mip_width(m)), int32_t(desc.mip_height(m)), 1};
+            regions.push_back(r);
+        }
+        // Same size, nearest: a pure format conversion.
+        vkCmdBlitImage(cmd, rgba32f.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, half.handle(),
+                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, uint32_t(regions.size()), regions.data(), VK_FILTER_NEAREST);
+        image_barrier(cmd, half.handle(), all, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, kBakedLayout,
+                      VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    }, "converting a baked output to RGBA16F");
+    return half;
+}
+
+}  // namespace facet
