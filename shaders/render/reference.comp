@@ -95,7 +95,7 @@ float brdf_pdf(Surface s, vec3 l) {
     if (NdotL <= 0.0) return 0.0;
     vec3 h = normalize(s.v + l);
     float NdotH = clamp(dot(n, h), 0.0, 1.0);
-    float specular = D_GGX(NdotH, s.shading.roughness) * NdotH / max(4.0 * dot(h, s.v), 1e-8);
+    float specular = ggx_sample_pdf(NdotH, dot(h, s.v), s.shading.roughness);
     return s.p_specular * specular + (1.0 - s.p_specular) * NdotL / PI;
 }
 
@@ -112,8 +112,8 @@ float kronecker(uint i, uint dim, float shift) {
 
 vec3 sample_brdf(Surface s, vec3 u) {
     vec3 n = s.shading.n;
-    vec3 up = abs(n.y) < 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
-    vec3 t = normalize(cross(up, n)), b = cross(n, t);
+    vec3 t, b;
+    facet_tangent_frame(n, t, b);
     float u1 = u.x, u2 = u.y;
     if (u.z < s.p_specular) {
         vec3 h = mat3(t, b, n) * importance_sample_ggx_tangent(vec2(u1, u2), s.shading.roughness);
