@@ -1,6 +1,7 @@
 #include <facet/render/reference_renderer.h>
 
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 
 #include <facet/gpu/context.h>
@@ -21,6 +22,9 @@ struct Params {
     glm::uvec4 batch;  // samples, first sample index
     glm::vec4 scale;   // environment intensity
 };
+static_assert(sizeof(Params) == 64 && offsetof(Params, env) == 16 && offsetof(Params, batch) == 32 &&
+                  offsetof(Params, scale) == 48,
+              "Params in shaders/render/reference.comp");
 
 const ResourceState sampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
