@@ -4,21 +4,12 @@
 #include <cmath>
 
 #include <facet/core/shared_constants.h>
+#include "io/equirect.h"
 
 namespace facet {
 namespace {
 
 double luminance(const float* t) { return facet::luminance(t[0], t[1], t[2]); }
-
-glm::dvec3 texel_direction(uint32_t x, uint32_t y, uint32_t w, uint32_t h) {
-    const double phi = ((x + 0.5) / w - 0.5) * 2 * pi, lat = (0.5 - (y + 0.5) / h) * pi;
-    return {std::cos(lat) * std::cos(phi), std::sin(lat), std::cos(lat) * std::sin(phi)};
-}
-
-double texel_solid_angle(uint32_t y, uint32_t w, uint32_t h) {
-    const double top = (0.5 - double(y) / h) * pi, bottom = (0.5 - double(y + 1) / h) * pi;
-    return 2 * pi / w * (std::sin(top) - std::sin(bottom));
-}
 
 }  // namespace
 
@@ -32,7 +23,7 @@ LightExtraction extract_lights(std::span<const float> rgba, uint32_t w, uint32_t
     double total_power = 0, peak = 0;
     for (size_t i = 0; i < n; ++i) {
         lum[i] = std::max(0.0, luminance(&rgba[i * 4]));
-        total_power += lum[i] * texel_solid_angle(uint32_t(i / w), w, h);
+        total_power += lum[i] * equirect_texel_solid_angle(uint32_t(i / w), w, h);
         peak = std::max(peak, lum[i]);
     }
     std::vector<double> sorted = lum;
@@ -58,7 +49,7 @@ LightExtraction extract_lights(std::span<const float> rgba, uint32_t w, uint32_t
             stack.pop_back();
             r.texels.push_back(i);
             const uint32_t x = i % w, y = i / w;
-            const double omega = texel_solid_angle(y, w, h);
+            const double omega = equirect_texel_solid_angle(y, w, h);
             r.power += lum[i] * omega;
             r.solid_angle += omega;
             for (int dy = -1; dy <= 1; ++dy)
@@ -111,11 +102,11 @@ LightExtraction extract_lights(std::span<const float> rgba, uint32_t w, uint32_t
         // Power above the fill, its direction (power-weighted) and solid angle.
         glm::dvec3 power(0.0), centroid(0.0);
         for (uint32_t i : r.texels) {
-            const double omega = texel_solid_angle(i / w, w, h);
+            const double omega = equirect_texel_solid_angle(i / w, w, h);
             const glm::dvec3 excess = glm::max(glm::dvec3(rgba[i * 4], rgba[i * 4 + 1], rgba[i * 4 + 2]) - fill, 0.0);
             power += excess * omega;
             centroid += facet::luminance(excess.x, excess.y, excess.z) * omega *
-                        texel_direction(i % w, i / w, w, h);
+                        equirect_texel_direction(i % w, i / w, w, h);
             for (int c = 0; c < 3; ++c) out.residual[i * 4 + size_t(c)] = float(fill[c]);
         }
         DiskLight light;

@@ -6,6 +6,7 @@
 #include <facet/core/shared_constants.h>
 #include <facet/graph/graph_run.h>
 #include <facet/shader/program_cache.h>
+#include "io/equirect.h"
 
 namespace facet {
 
@@ -31,8 +32,9 @@ ProceduralSky ProceduralSky::white() {
 
 std::array<float, 3> ProceduralSky::sun_direction() const {
     const double to_rad = pi / 180.0;
-    const double el = sun_elevation_deg * to_rad, az = sun_azimuth_deg * to_rad;
-    return {float(std::cos(el) * std::cos(az)), float(std::sin(el)), float(std::cos(el) * std::sin(az))};
+    // Azimuth is the equirect longitude (0 along +X, 90 along +Z), elevation its latitude.
+    const glm::dvec3 d = direction_at(sun_azimuth_deg * to_rad, sun_elevation_deg * to_rad);
+    return {float(d.x), float(d.y), float(d.z)};
 }
 
 std::string ProceduralSky::content_hash() const {

@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
+
+#include "io/equirect.h"
 
 namespace facet {
 
@@ -54,9 +55,7 @@ BoxDownsampler::BoxDownsampler(uint32_t src_width, uint32_t src_height, uint32_t
 
 double BoxDownsampler::row_weight(double top, double bottom) const {
     if (weights_ == RowWeights::uniform) return bottom - top;
-    // Latitude pi/2 - pi t / H at source row coordinate t: sin(latitude) = cos(pi t / H).
-    const double k = std::numbers::pi / double(src_h_);
-    return std::cos(k * top) - std::cos(k * bottom);
+    return equirect_band_solid_angle(top, bottom, src_h_);
 }
 
 void BoxDownsampler::emit_row(uint32_t slot) {

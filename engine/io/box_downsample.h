@@ -4,8 +4,8 @@
 // never the source. Each output texel is the weighted mean of the source area it
 // covers (fractional texels at its edges count by their overlap), so for an integer
 // ratio it is the plain f x f box. Rows are weighted either uniformly (textures) or by
-// the exact solid angle of the latitude band they span (equirectangular maps): a band
-// from latitude a to b spans 2 pi (sin b - sin a) / width per texel, and the bands of
+// the exact solid angle of the latitude band they span (equirectangular maps,
+// io/equirect.h): a band from latitude a to b spans 2 pi (sin b - sin a), and the bands of
 // the source rows inside an output row add up exactly to that row's band, so the
 // output keeps the integral of radiance over the sphere (its mean) to rounding.
 #include <cstdint>

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include <facet/core/shared_constants.h>
+#include "io/equirect.h"
 
 namespace facet {
 
@@ -15,8 +16,7 @@ EnvironmentDistribution build_environment_distribution(std::span<const float> rg
     std::vector<double> weight(W * H);
     double total = 0;
     for (size_t y = 0; y < H; ++y) {
-        const double lat_top = (0.5 - double(y) / H) * pi, lat_bottom = (0.5 - double(y + 1) / H) * pi;
-        const double solid_angle = 2 * pi / W * (std::sin(lat_top) - std::sin(lat_bottom));
+        const double solid_angle = equirect_texel_solid_angle(uint32_t(y), width, height);
         for (size_t x = 0; x < W; ++x) {
             const float* t = &rgba[(y * W + x) * 4];
             const double luminance = facet::luminance(t[0], t[1], t[2]);

@@ -1,17 +1,17 @@
 #pragma once
 // The forward pass's per-frame and per-draw data as the shaders read it (std140 /
 // std430 layouts of shaders/render/forward_interface.glsl and skybox.comp), shared by
-// forward_pass.cpp and forward_renderer.cpp.
+// forward_pass.cpp and forward_renderer.cpp. The lights are render/light_data.h's.
+// tests/cpu/gpu_layout_test.cpp compares these layouts with the shaders'.
 #include <algorithm>
-#include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include <facet/gpu/resources.h>
-#include <facet/ibl/light_extraction.h>
-#include <facet/scene/scene.h>
+#include "render/light_data.h"
 
 namespace facet::forward {
 
@@ -21,20 +21,15 @@ struct FrameData {
     glm::vec4 ibl;
     glm::uvec4 counts;
 };
-static_assert(sizeof(FrameData) == 112, "Frame in forward_interface.glsl");
-
-struct LightData {
-    glm::vec4 position_range;
-    glm::vec4 direction_type;
-    glm::vec4 color_intensity;
-    glm::vec4 cone;
-};
-static_assert(sizeof(LightData) == 64, "Light in forward_interface.glsl");
+static_assert(sizeof(FrameData) == 112 && offsetof(FrameData, camera_position) == 64 && offsetof(FrameData, ibl) == 80 &&
+                  offsetof(FrameData, counts) == 96,
+              "Frame in forward_interface.glsl");
 
 struct DrawConstants {
     uint32_t instance;
     uint32_t material;
 };
+static_assert(sizeof(DrawConstants) == 8 && offsetof(DrawConstants, material) == 4, "Draw in forward_interface.glsl");
 
 struct SkyConstants {
     glm::mat4 inverse_view_projection;
@@ -42,26 +37,9 @@ struct SkyConstants {
     float intensity;
     uint32_t disks;
 };
-
-inline LightData disk_data(const DiskLight& d) {
-    LightData data{};
-    data.direction_type = glm::vec4(-d.direction, 3.0f);  // the direction the light travels
-    data.color_intensity = glm::vec4(d.radiance, 1.0f);
-    data.cone = glm::vec4(std::cos(d.angular_radius), d.angular_radius, 0.0f, 0.0f);
-    return data;
-}
-
-inline LightData light_data(const Light& l) {
-    LightData d{};
-    d.position_range = glm::vec4(l.position, l.range);
-    d.direction_type = glm::vec4(glm::normalize(l.direction), float(int(l.type)));
-    d.color_intensity = glm::vec4(l.color, l.intensity);
-    // KHR_lights_punctual's smooth cone: scale and offset of the cosine.
-    const float cos_outer = std::cos(l.outer_cone), cos_inner = std::cos(l.inner_cone);
-    const float scale = 1.0f / std::max(cos_inner - cos_outer, 1e-4f);
-    d.cone = glm::vec4(scale, -cos_outer * scale, 0.0f, 0.0f);
-    return d;
-}
+static_assert(offsetof(SkyConstants, lod) == 64 && offsetof(SkyConstants, intensity) == 68 &&
+                  offsetof(SkyConstants, disks) == 72,
+              "Sky in skybox.comp");
 
 // Copies `lights` into a slot's storage buffer, growing it first when it is too small
 // (a frame with more lights than any before; steady frames reuse it). At least one

@@ -1,6 +1,7 @@
 #include <facet/render/reference_renderer.h>
 
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 
 #include <facet/gpu/context.h>
@@ -9,6 +10,7 @@
 #include <facet/graph/compiled_graph.h>
 #include <facet/graph/graph_run.h>
 #include "render/environment_distribution.h"
+#include "render/light_data.h"
 #include <facet/shader/program_cache.h>
 
 namespace facet {
@@ -20,10 +22,9 @@ struct Params {
     glm::uvec4 batch;  // samples, first sample index
     glm::vec4 scale;   // environment intensity
 };
-
-struct LightData {
-    glm::vec4 position_range, direction_type, color_intensity, cone;
-};
+static_assert(sizeof(Params) == 64 && offsetof(Params, env) == 16 && offsetof(Params, batch) == 32 &&
+                  offsetof(Params, scale) == 48,
+              "Params in shaders/render/reference.comp");
 
 const ResourceState sampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
@@ -73,12 +74,7 @@ Result<ReferenceStats> ReferenceRenderer::accumulate(const ReferenceSurface& sur
     if (!pipeline) return pipeline.error();
 
     std::vector<LightData> lights;
-    for (const Light& l : frame.lights) {
-        const float cos_outer = std::cos(l.outer_cone), cos_inner = std::cos(l.inner_cone);
-        const float scale = 1.0f / std::max(cos_inner - cos_outer, 1e-4f);
-        lights.push_back({glm::vec4(l.position, l.range), glm::vec4(glm::normalize(l.direction), float(int(l.type))),
-                          glm::vec4(l.color, l.intensity), glm::vec4(scale, -cos_outer * scale, 0.0f, 0.0f)});
-    }
+    for (const Light& l : frame.lights) lights.push_back(light_data(l));
     lights_ = storage_buffer(context_, lights.data(), lights.size() * sizeof(LightData), "reference lights");
     if (!radiance_) {
         const float zero[4] = {};

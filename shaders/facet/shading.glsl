@@ -69,6 +69,14 @@ void facet_reflect_light(FacetSurface s, vec3 v, float NdotV, vec3 l, vec3 incid
                incident * NdotL;
 }
 
+// Unit vectors t and b that make (t, b, n) a right-handed orthonormal frame around the
+// unit vector n (any rotation about n; +Y is crossed with n unless n is nearly +-Y).
+void facet_tangent_frame(vec3 n, out vec3 t, out vec3 b) {
+    vec3 up = abs(n.y) < 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
+    t = normalize(cross(up, n));
+    b = cross(n, t);
+}
+
 // Punctual lights (KHR_lights_punctual).
 const uint FACET_LIGHT_DIRECTIONAL = 0u;
 const uint FACET_LIGHT_POINT = 1u;
@@ -145,8 +153,8 @@ void facet_disk_light(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, 
     vec3 c = disk.direction;
     float cos_theta = disk.cos_radius, theta = disk.angular_radius;
     vec3 L = disk.radiance;
-    vec3 up = abs(c.y) < 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
-    vec3 t = normalize(cross(up, c)), b = cross(c, t);
+    vec3 t, b;
+    facet_tangent_frame(c, t, b);
     const uint N = 32u;
     float omega = 2.0 * PI * (1.0 - cos_theta) / float(N);
     float k = k_ibl(s.roughness);

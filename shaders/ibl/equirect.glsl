@@ -2,7 +2,8 @@
 #define FACET_EQUIRECT_GLSL
 // Equirectangular mapping fixed in design.md (the thesis' SampleEquirectangular):
 // u = atan2(d.z, d.x) / 2pi + 0.5, v = asin(d.y) / pi + 0.5, and v = 1 is the top row
-// of the image, so image row 0 is +Y, the centre column is +X, u = 0.75 is +Z.
+// of the image, so image row 0 is +Y, the centre column is +X, u = 0.75 is +Z. The C++
+// side is engine/io/equirect.h (tests/gpu/shared_constants_test.cpp compares the two).
 
 #include "facet/shared_constants.h"
 
@@ -26,18 +27,24 @@ uvec2 equirect_texel(vec3 d, uvec2 size) {
     return min(uvec2(equirect_uv(d) * vec2(size)), size - 1u);
 }
 
+// Latitude (radians) at row coordinate `row` of an image `height` rows tall (row y spans
+// [y, y + 1]): +pi/2 at the top edge, -pi/2 at the bottom edge.
+float equirect_latitude(float row, uint height) {
+    return facet_pi * (0.5 - row / float(height));
+}
+
 // Solid angle of a texel of row y: (2 pi / W) (sin(latitude_top) - sin(latitude_bottom)).
 float equirect_texel_solid_angle(uint y, uvec2 size) {
-    float latitude_top = facet_pi * (0.5 - float(y) / float(size.y));
-    float latitude_bottom = facet_pi * (0.5 - float(y + 1u) / float(size.y));
+    float latitude_top = equirect_latitude(float(y), size.y);
+    float latitude_bottom = equirect_latitude(float(y + 1u), size.y);
     return (2.0 * facet_pi / float(size.x)) * (sin(latitude_top) - sin(latitude_bottom));
 }
 
 // A direction inside texel `texel` for jitter in [0, 1)^2, uniform in solid angle across
 // the texel: linear in longitude and in sin(latitude).
 vec3 equirect_texel_direction(uvec2 texel, vec2 jitter, uvec2 size) {
-    float latitude_top = facet_pi * (0.5 - float(texel.y) / float(size.y));
-    float latitude_bottom = facet_pi * (0.5 - float(texel.y + 1u) / float(size.y));
+    float latitude_top = equirect_latitude(float(texel.y), size.y);
+    float latitude_bottom = equirect_latitude(float(texel.y + 1u), size.y);
     float sin_lat = mix(sin(latitude_bottom), sin(latitude_top), jitter.y);
     float cos_lat = sqrt(max(0.0, 1.0 - sin_lat * sin_lat));
     float phi = ((float(texel.x) + jitter.x) / float(size.x) - 0.5) * 2.0 * facet_pi;

@@ -27,4 +27,10 @@ vec3 importance_sample_ggx_tangent(vec2 xi, float roughness) {
     return vec3(cos(phi) * sin_theta, sin(phi) * sin_theta, cos_theta);
 }
 
+// Density over solid angle of l = reflect(-v, h) for h drawn by
+// importance_sample_ggx_tangent: D(h) (n.h) / (4 v.h) (Walter et al. 2007, eq. 14 and 38).
+float ggx_sample_pdf(float NdotH, float VdotH, float roughness) {
+    return D_GGX(NdotH, roughness) * NdotH / max(4.0 * VdotH, 1e-8);
+}
+
 #endif

@@ -37,8 +37,8 @@ void main() {
         if (NdotL <= 0.0) continue;
         float lod = 0.0;
         if (params.filtered != 0u) {
-            // pdf(l) = D(h) (n.h) / (4 v.h) = D(h) / 4 with v = n.
-            float pdf = D_GGX(ht.z, params.roughness) * 0.25;
+            // v = n, so v.h = n.h (and the density is D(h) / 4).
+            float pdf = ggx_sample_pdf(ht.z, ht.z, params.roughness);
             float sample_solid_angle = 1.0 / (float(params.sample_count) * pdf + 1e-6);
             lod = max(0.5 * log2(sample_solid_angle / texel_solid_angle) + 1.0, 0.0);
         }

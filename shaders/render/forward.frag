@@ -10,7 +10,6 @@
 // specular lookup), VIEW (what is written: render/views.glsl).
 #include "facet/shading.glsl"
 #include "render/forward_interface.glsl"
-#include "render/packed_light.glsl"
 #include "render/views.glsl"
 
 #ifndef VIEW
@@ -108,11 +107,8 @@ void main() {
     vec3 view_l = reflect(-v, n);
     float view_k = k_ibl(s.roughness);
     for (uint i = 0u; i < frame.counts.x; ++i) {
-        Light light = lights[i];
         vec3 l;
-        vec3 incident = facet_punctual_incidence(
-            unpack_punctual_light(light.position_range, light.direction_type, light.color_intensity, light.cone),
-            in_world, l);
+        vec3 incident = facet_punctual_incidence(unpack_punctual_light(lights[i]), in_world, l);
         if (i == 0u) {
             view_l = l;
             view_k = k_direct(s.roughness);
@@ -128,9 +124,7 @@ void main() {
     float disk_specular_weight = facet_disk_specular_weight(s.roughness, specular_levels, frame.ibl.z);
     for (uint i = 0u; i < frame.counts.y; ++i) {
         vec3 disk_diffuse, disk_specular;
-        Light disk = lights[frame.counts.x + i];
-        facet_disk_light(s, v, NdotV, unpack_disk_light(disk.direction_type, disk.color_intensity, disk.cone), lut,
-                         disk_diffuse, disk_specular);
+        facet_disk_light(s, v, NdotV, unpack_disk_light(lights[frame.counts.x + i]), lut, disk_diffuse, disk_specular);
         diffuse += disk_diffuse * frame.ibl.x * s.occlusion;
         specular += disk_specular * disk_specular_weight * frame.ibl.x * s.occlusion;
     }

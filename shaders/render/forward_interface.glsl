@@ -1,8 +1,11 @@
 #ifndef FACET_FORWARD_INTERFACE_GLSL
 #define FACET_FORWARD_INTERFACE_GLSL
 // What the forward pass's shaders share with engine/render/forward_pass.cpp: the
-// descriptor bindings, the buffer layouts and the push constants. Keep in step with
-// the C++ structs there (std140 / std430, vec4-aligned).
+// descriptor bindings, the buffer layouts and the push constants. The C++ mirrors are in
+// engine/render/forward_data.h, light_data.h and include/facet/render/gpu_scene.h;
+// tests/cpu/gpu_layout_test.cpp checks their sizes and offsets against this file's
+// (std140 / std430, vec4-aligned).
+#include "render/packed_light.glsl"
 
 layout(binding = 0, std140) uniform Frame {
     mat4 view_projection;
@@ -11,13 +14,8 @@ layout(binding = 0, std140) uniform Frame {
     uvec4 counts;          // x: punctual lights, y: disk lights extracted from the environment (after them)
 } frame;
 
-struct Light {
-    vec4 position_range;    // xyz position, w range (0 = infinite)
-    vec4 direction_type;    // xyz direction the light travels, w: 0 directional, 1 point, 2 spot, 3 disk
-    vec4 color_intensity;   // rgb colour, a intensity (lux or candela)
-    vec4 cone;              // spot: x = 1 / (cos inner - cos outer), y = -cos outer * x; disk: x = cos, y = angle
-};
-layout(binding = 1, std430) readonly buffer Lights { Light lights[]; };
+// The punctual lights (frame.counts.x), then the disks (frame.counts.y).
+layout(binding = 1, std430) readonly buffer Lights { PackedLight lights[]; };
 
 struct InstanceData {
     mat4 world;

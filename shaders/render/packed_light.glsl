@@ -1,34 +1,41 @@
 #ifndef FACET_PACKED_LIGHT_GLSL
 #define FACET_PACKED_LIGHT_GLSL
-// The packed light the renderers upload (four vec4: position_range, direction_type,
-// color_intensity, cone; render/forward_interface.glsl's Light, the reference pass's
-// lights) read into facet/shading.glsl's types. Taken member by member so that any block
-// of that layout can be passed.
+// The light the renderers upload, declared once: the forward pass's lights
+// (render/forward_interface.glsl), the reference pass's (render/reference.comp) and the
+// skybox's extracted disks (render/skybox.comp) are arrays of PackedLight, and the C++
+// side fills engine/render/light_data.h's LightData (tests/cpu/gpu_layout_test.cpp checks
+// the two layouts against each other). The unpack functions turn it into
+// facet/shading.glsl's types, whose functions hold the falloff and the shading.
 #include "facet/shading.glsl"
 
-// position_range: xyz position, w range (0 = infinite); direction_type: xyz direction the
-// light travels, w type (0 directional, 1 point, 2 spot); color_intensity: rgb colour,
-// a intensity; cone: x = 1 / (cos inner - cos outer), y = -cos outer * x.
-FacetPunctualLight unpack_punctual_light(vec4 position_range, vec4 direction_type, vec4 color_intensity, vec4 cone) {
+struct PackedLight {
+    vec4 position_range;   // xyz position (metres), w range (0 = infinite)
+    vec4 direction_type;   // xyz the direction the light travels, w the type: FACET_LIGHT_*
+                           // (0 directional, 1 point, 2 spot) or 3, a disk extracted from
+                           // the environment
+    vec4 color_intensity;  // rgb colour, a intensity (lux or candela); disk: radiance x a
+    vec4 cone;             // spot: x = 1 / (cos inner - cos outer), y = -cos outer * x;
+                           // disk: x = cos of the angular radius, y = the angular radius
+};
+
+FacetPunctualLight unpack_punctual_light(PackedLight light) {
     FacetPunctualLight p;
-    p.type = uint(direction_type.w);
-    p.position = position_range.xyz;
-    p.range_m = position_range.w;
-    p.direction = direction_type.xyz;
-    p.intensity = color_intensity.rgb * color_intensity.a;
-    p.cone_scale = cone.x;
-    p.cone_offset = cone.y;
+    p.type = uint(light.direction_type.w);
+    p.position = light.position_range.xyz;
+    p.range_m = light.position_range.w;
+    p.direction = light.direction_type.xyz;
+    p.intensity = light.color_intensity.rgb * light.color_intensity.a;
+    p.cone_scale = light.cone.x;
+    p.cone_offset = light.cone.y;
     return p;
 }
 
-// A disk (type 3): direction_type.xyz the direction its light travels, color_intensity
-// radiance, cone: x = cos of the angular radius, y = the angular radius.
-FacetDiskLight unpack_disk_light(vec4 direction_type, vec4 color_intensity, vec4 cone) {
+FacetDiskLight unpack_disk_light(PackedLight light) {
     FacetDiskLight d;
-    d.direction = -normalize(direction_type.xyz);
-    d.cos_radius = cone.x;
-    d.angular_radius = cone.y;
-    d.radiance = color_intensity.rgb * color_intensity.a;
+    d.direction = -normalize(light.direction_type.xyz);
+    d.cos_radius = light.cone.x;
+    d.angular_radius = light.cone.y;
+    d.radiance = light.color_intensity.rgb * light.color_intensity.a;
     return d;
 }
 

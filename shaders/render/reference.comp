@@ -27,13 +27,7 @@ layout(binding = 7, std430) readonly buffer Radiance { vec4 radiance[]; };  // W
 // marginal[H] (row CDF, last = 1), then conditional[H * W] (per-row column CDFs),
 // then pdf_texel[H * W]: probability of picking each texel.
 layout(binding = 8, std430) readonly buffer Distribution { float distribution[]; };
-struct Light {
-    vec4 position_range;
-    vec4 direction_type;
-    vec4 color_intensity;
-    vec4 cone;
-};
-layout(binding = 9, std430) readonly buffer Lights { Light lights[]; };
+layout(binding = 9, std430) readonly buffer Lights { PackedLight lights[]; };  // punctual only
 layout(binding = 10, rgba32f) uniform image2D accumulation;  // rgb sum, a = samples
 layout(binding = 11, rgba32f) uniform image2D moments;       // x: sum of Y, y: sum of Y^2 (per batch mean)
 
@@ -101,7 +95,7 @@ float brdf_pdf(Surface s, vec3 l) {
     if (NdotL <= 0.0) return 0.0;
     vec3 h = normalize(s.v + l);
     float NdotH = clamp(dot(n, h), 0.0, 1.0);
-    float specular = D_GGX(NdotH, s.shading.roughness) * NdotH / max(4.0 * dot(h, s.v), 1e-8);
+    float specular = ggx_sample_pdf(NdotH, dot(h, s.v), s.shading.roughness);
     return s.p_specular * specular + (1.0 - s.p_specular) * NdotL / PI;
 }
 
@@ -118,8 +112,8 @@ float kronecker(uint i, uint dim, float shift) {
 
 vec3 sample_brdf(Surface s, vec3 u) {
     vec3 n = s.shading.n;
-    vec3 up = abs(n.y) < 0.999 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
-    vec3 t = normalize(cross(up, n)), b = cross(n, t);
+    vec3 t, b;
+    facet_tangent_frame(n, t, b);
     float u1 = u.x, u2 = u.y;
     if (u.z < s.p_specular) {
         vec3 h = mat3(t, b, n) * importance_sample_ggx_tangent(vec2(u1, u2), s.shading.roughness);
@@ -143,10 +137,8 @@ vec3 punctual(Surface s, vec3 p) {
     vec3 sum = vec3(0.0);
     bool height_correlated = (params.env.w & 1u) != 0u;
     for (uint i = 0u; i < params.env.z; ++i) {
-        Light light = lights[i];
         vec3 l;
-        vec3 incident = facet_punctual_incidence(
-            unpack_punctual_light(light.position_range, light.direction_type, light.color_intensity, light.cone), p, l);
+        vec3 incident = facet_punctual_incidence(unpack_punctual_light(lights[i]), p, l);
         sum += reflected(s, l, incident, k_direct(s.shading.roughness), height_correlated);
     }
     return sum;

@@ -4,6 +4,8 @@
 // (opaque geometry) or the "over" alpha (blended geometry), so colour + (1 - alpha) sky
 // is the frame over the sky, antialiased edges included. One cube sample per pixel in a
 // compute pass costs a small fraction of drawing the sky into every MSAA sample.
+#include "render/packed_light.glsl"
+
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0) uniform samplerCube environment;
 #ifdef FRAME_RGBA16F
@@ -11,15 +13,9 @@ layout(binding = 1, rgba16f) uniform image2D frame;  // a host's half-float targ
 #else
 layout(binding = 1, rgba32f) uniform image2D frame;
 #endif
-// Lights extracted from the environment (render/forward_interface.glsl's Light, type 3):
-// the sky shows them where the map was filled.
-struct Disk {
-    vec4 position_range;
-    vec4 direction_type;
-    vec4 color_intensity;
-    vec4 cone;
-};
-layout(binding = 2, std430) readonly buffer Disks { Disk disks[]; };
+// Lights extracted from the environment (disks, type 3): the sky shows them
+// where the map was filled.
+layout(binding = 2, std430) readonly buffer Disks { PackedLight disks[]; };
 
 layout(push_constant) uniform Sky {
     mat4 inverse_view_projection;  // of the view without translation
@@ -38,9 +34,10 @@ void main() {
     vec3 direction = normalize(far.xyz / far.w);
     vec4 color = imageLoad(frame, p);
     vec3 background = textureLod(environment, direction, sky.lod).rgb;
-    for (uint i = 0u; i < sky.disk_count; ++i)
-        if (dot(direction, -normalize(disks[i].direction_type.xyz)) >= disks[i].cone.x)
-            background += disks[i].color_intensity.rgb * disks[i].color_intensity.a;
+    for (uint i = 0u; i < sky.disk_count; ++i) {
+        FacetDiskLight disk = unpack_disk_light(disks[i]);
+        if (dot(direction, disk.direction) >= disk.cos_radius) background += disk.radiance;
+    }
     background *= sky.intensity;
     float coverage = clamp(color.a, 0.0, 1.0);
     imageStore(frame, p, vec4(color.rgb + (1.0 - coverage) * background, 1.0));

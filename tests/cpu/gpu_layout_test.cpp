@@ -2,18 +2,22 @@
 // layout glslang gives the shader's struct (std430 / std140, read from the SPIR-V), so a
 // member added, moved or retyped on one side only fails here. No GPU needed.
 //
-// Reachable here are the mirrors declared in headers. The forward pass's FrameData,
-// LightData, DrawConstants and SkyConstants (engine/render/forward_renderer.cpp), the
-// reference pass's Params and LightData (engine/render/reference_renderer.cpp) and the
-// bake's push-constant blocks (engine/ibl/*.cpp) are defined inside .cpp files; for the
-// lights, the GLSL copies are checked against each other instead (one packed layout,
-// render/packed_light.glsl).
+// Checked here are the mirrors declared in headers: the scene's instances and materials
+// (facet/render/gpu_scene.h), the light every renderer uploads (engine/render/
+// light_data.h, read by the forward pass, the reference pass and the skybox) and the
+// forward pass's frame, draw and sky constants (engine/render/forward_data.h). The
+// reference pass's Params and the bake's push-constant blocks are still defined inside
+// their .cpp files.
 #include <gtest/gtest.h>
 
 #include <cstddef>
+#include <optional>
+#include <utility>
 
 #include <facet/render/gpu_scene.h>
 #include <facet/shader/compiler.h>
+#include "render/forward_data.h"
+#include "render/light_data.h"
 #include "support/spirv_layout.h"
 
 namespace facet {
@@ -42,8 +46,10 @@ struct Member {
     size_t offset;
 };
 
-void expect_layout(const std::vector<uint32_t>& spirv, const char* shader, const char* type, size_t size,
-                   std::initializer_list<Member> members) {
+// `type` in `spirv` has exactly `members` at their C++ offsets; for an array element
+// (array_size set) the array stride is the C++ size.
+void expect_members(const std::vector<uint32_t>& spirv, const char* shader, const char* type,
+                    std::initializer_list<Member> members, std::optional<size_t> array_size) {
     auto layout = test::spirv_struct_layout(spirv, type);
     ASSERT_TRUE(layout) << type << " not found in " << shader;
     EXPECT_EQ(layout->offsets.size(), members.size()) << type << " in " << shader << ": member count";
@@ -51,8 +57,14 @@ void expect_layout(const std::vector<uint32_t>& spirv, const char* shader, const
         ASSERT_TRUE(layout->offsets.count(m.name)) << type << "." << m.name << " not in " << shader;
         EXPECT_EQ(layout->offsets.at(m.name), m.offset) << type << "." << m.name << " in " << shader;
     }
+    if (!array_size) return;
     ASSERT_TRUE(layout->array_stride) << type << " in " << shader << ": no array of it";
-    EXPECT_EQ(*layout->array_stride, size) << type << " in " << shader << ": array stride vs sizeof";
+    EXPECT_EQ(*layout->array_stride, *array_size) << type << " in " << shader << ": array stride vs sizeof";
+}
+
+void expect_layout(const std::vector<uint32_t>& spirv, const char* shader, const char* type, size_t size,
+                   std::initializer_list<Member> members) {
+    expect_members(spirv, shader, type, members, size);
 }
 
 TEST(GpuLayout, InstanceDataMatchesGpuInstance) {
@@ -70,25 +82,42 @@ TEST(GpuLayout, MaterialDataMatchesGpuMaterial) {
                    {"extra", offsetof(GpuMaterial, extra)}});
 }
 
-// The forward pass, the reference pass and the skybox read one packed light layout.
-TEST(GpuLayout, EveryShaderReadsTheSamePackedLight) {
-    auto forward = compile(ShaderStage::fragment, "render/forward.frag", {{"USE_IBL", "1"}});
-    auto reference = compile(ShaderStage::compute, "render/reference.comp");
-    auto skybox = compile(ShaderStage::compute, "render/skybox.comp");
-    auto a = test::spirv_struct_layout(forward, "Light");
-    auto b = test::spirv_struct_layout(reference, "Light");
-    auto c = test::spirv_struct_layout(skybox, "Disk");
-    ASSERT_TRUE(a && b && c);
-    EXPECT_EQ(a->offsets, b->offsets);
-    EXPECT_EQ(a->offsets, c->offsets);
-    ASSERT_TRUE(a->array_stride && b->array_stride && c->array_stride);
-    EXPECT_EQ(*a->array_stride, 64u);
-    EXPECT_EQ(*b->array_stride, *a->array_stride);
-    EXPECT_EQ(*c->array_stride, *a->array_stride);
-    EXPECT_EQ(a->offsets.at("position_range"), 0u);
-    EXPECT_EQ(a->offsets.at("direction_type"), 16u);
-    EXPECT_EQ(a->offsets.at("color_intensity"), 32u);
-    EXPECT_EQ(a->offsets.at("cone"), 48u);
+// The forward pass, the reference pass and the skybox read one packed light
+// (render/packed_light.glsl), and it is the layout LightData fills.
+TEST(GpuLayout, EveryShaderReadsLightData) {
+    const std::pair<ShaderStage, const char*> shaders[] = {{ShaderStage::fragment, "render/forward.frag"},
+                                                           {ShaderStage::compute, "render/reference.comp"},
+                                                           {ShaderStage::compute, "render/skybox.comp"}};
+    for (const auto& [stage, name] : shaders) {
+        auto spirv = compile(stage, name, {{"USE_IBL", "1"}});
+        expect_layout(spirv, name, "PackedLight", sizeof(LightData),
+                      {{"position_range", offsetof(LightData, position_range)},
+                       {"direction_type", offsetof(LightData, direction_type)},
+                       {"color_intensity", offsetof(LightData, color_intensity)},
+                       {"cone", offsetof(LightData, cone)}});
+    }
+}
+
+TEST(GpuLayout, ForwardConstantsMatchTheShaders) {
+    using namespace forward;
+    auto frag = compile(ShaderStage::fragment, "render/forward.frag", {{"USE_IBL", "1"}});
+    expect_members(frag, "render/forward.frag", "Frame",
+                   {{"view_projection", offsetof(FrameData, view_projection)},
+                    {"camera_position", offsetof(FrameData, camera_position)},
+                    {"ibl", offsetof(FrameData, ibl)},
+                    {"counts", offsetof(FrameData, counts)}},
+                   std::nullopt);
+    auto vert = compile(ShaderStage::vertex, "render/forward.vert");
+    expect_members(vert, "render/forward.vert", "Draw",
+                   {{"instance", offsetof(DrawConstants, instance)}, {"material", offsetof(DrawConstants, material)}},
+                   std::nullopt);
+    auto sky = compile(ShaderStage::compute, "render/skybox.comp");
+    expect_members(sky, "render/skybox.comp", "Sky",
+                   {{"inverse_view_projection", offsetof(SkyConstants, inverse_view_projection)},
+                    {"lod", offsetof(SkyConstants, lod)},
+                    {"intensity", offsetof(SkyConstants, intensity)},
+                    {"disk_count", offsetof(SkyConstants, disks)}},
+                   std::nullopt);
 }
 
 // The reader itself: a struct with padding the std430 rules put in.
