@@ -92,6 +92,9 @@ std::unique_ptr<RenderSession> open_session(Context& context, const RenderJob& b
     job.preset = c.preset.empty() ? std::nullopt : std::optional<std::string>(c.preset);
     job.ibl.irradiance.method = c.irradiance;
     job.ibl.specular.method = c.specular;
+    // A saved bake (--ibl DIR) holds its own environment and methods: choosing others bakes them.
+    if (c.env != base.env || c.irradiance != base.ibl.irradiance.method || c.specular != base.ibl.specular.method)
+        job.ibl_dir.clear();
     auto session = RenderSession::create(context, job, log);
     if (!session) {
         c.status = session.error().message;

@@ -4,36 +4,98 @@
 #include <cstdio>
 #include <cstring>
 
+#include <facet/gpu/context.h>
 #include <facet/gpu/transfer.h>
 #include <facet/io/ktx2.h>
 
 namespace facet {
 
 
-Levels read_levels(Context& context, const Image& image, VkImageLayout layout) {
-    Levels levels;
-    const ImageDesc& d = image.desc();
+namespace {
+
+// Where each level starts in a staging buffer holding every level, its layers one after
+// another (a copy region per level covers all its layers: tightly packed, layer after layer).
+std::vector<VkBufferImageCopy> level_regions(const ImageDesc& d, const std::vector<VkDeviceSize>& level_bytes) {
+    std::vector<VkBufferImageCopy> regions;
+    VkDeviceSize offset = 0;
     for (uint32_t m = 0; m < d.mip_levels; ++m) {
-        std::vector<std::byte> level;
-        for (uint32_t layer = 0; layer < d.array_layers; ++layer) {
-            auto bytes = read_image(context, image, m, layer, layout);
-            level.insert(level.end(), bytes.begin(), bytes.end());
-        }
-        levels.push_back(std::move(level));
+        VkBufferImageCopy r{};
+        r.bufferOffset = offset;
+        r.imageSubresource = {aspect_of(d.format), m, 0, d.array_layers};
+        r.imageExtent = {d.mip_width(m), d.mip_height(m), 1};
+        regions.push_back(r);
+        offset += level_bytes[m];
     }
+    return regions;
+}
+
+std::vector<VkDeviceSize> level_sizes(const ImageDesc& d) {
+    const VkDeviceSize texel = ktx2_texel_size(d.format);
+    if (texel == 0) throw UsageError("baked images are RGBA16F or RGBA32F");
+    std::vector<VkDeviceSize> sizes;
+    for (uint32_t m = 0; m < d.mip_levels; ++m)
+        sizes.push_back(VkDeviceSize(d.mip_width(m)) * d.mip_height(m) * d.array_layers * texel);
+    return sizes;
+}
+
+}  // namespace
+
+// One staging buffer and one submission for the whole image (not one per level and layer).
+Levels read_levels(Context& context, const Image& image, VkImageLayout layout) {
+    const ImageDesc& d = image.desc();
+    const std::vector<VkDeviceSize> sizes = level_sizes(d);
+    VkDeviceSize total = 0;
+    for (VkDeviceSize s : sizes) total += s;
+    Buffer staging(context, total, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::readback, "baked image readback");
+    const VkImageSubresourceRange all = whole_range(d);
+    const auto regions = level_regions(d, sizes);
+    context.submit_and_wait([&](VkCommandBuffer cmd) {
+        image_barrier(cmd, image.handle(), all, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                      VK_ACCESS_2_TRANSFER_READ_BIT);
+        vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(),
+                               uint32_t(regions.size()), regions.data());
+        image_barrier(cmd, image.handle(), all, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, layout,
+                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                      VK_ACCESS_2_NONE);
+        memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                       VK_ACCESS_2_HOST_READ_BIT);
+    }, "reading a baked image back");
+    staging.invalidate();
+    Levels levels;
+    const auto* bytes = static_cast<const std::byte*>(staging.mapped());
+    for (uint32_t m = 0; m < d.mip_levels; ++m)
+        levels.emplace_back(bytes + regions[m].bufferOffset, bytes + regions[m].bufferOffset + sizes[m]);
     return levels;
 }
 
 Image make_baked_image(Context& context, const ImageDesc& desc, const Levels& levels, const std::string& name) {
     Image image(context, desc,
                 VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, name);
+    const std::vector<VkDeviceSize> sizes = level_sizes(desc);
+    VkDeviceSize total = 0;
     for (uint32_t m = 0; m < desc.mip_levels; ++m) {
-        const size_t layer_bytes = levels[m].size() / desc.array_layers;
-        for (uint32_t layer = 0; layer < desc.array_layers; ++layer)
-            upload_image(context, image, m, layer,
-                         std::span<const std::byte>(levels[m].data() + layer * layer_bytes, layer_bytes),
-                         VK_IMAGE_LAYOUT_UNDEFINED, kBakedLayout);
+        if (m >= levels.size() || levels[m].size() != sizes[m])
+            throw UsageError("make_baked_image: level " + std::to_string(m) + " of " + name + " has the wrong size");
+        total += sizes[m];
     }
+    Buffer staging(context, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::upload, "baked image upload");
+    const auto regions = level_regions(desc, sizes);
+    auto* bytes = static_cast<std::byte*>(staging.mapped());
+    for (uint32_t m = 0; m < desc.mip_levels; ++m)
+        std::memcpy(bytes + regions[m].bufferOffset, levels[m].data(), sizes[m]);
+    staging.flush();
+    const VkImageSubresourceRange all = whole_range(desc);
+    context.submit_and_wait([&](VkCommandBuffer cmd) {
+        image_barrier(cmd, image.handle(), all, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                      VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COPY_BIT,
+                      VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        vkCmdCopyBufferToImage(cmd, staging.handle(), image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                               uint32_t(regions.size()), regions.data());
+        image_barrier(cmd, image.handle(), all, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, kBakedLayout,
+                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    }, "uploading a baked image");
     return image;
 }
 
