@@ -27,8 +27,7 @@ ImageHandle add_clear_levels_pass(RenderGraph& graph, ImageHandle image, uint32_
 
 Result<BufferHandle> add_output_range_passes(RenderGraph& graph, ProgramCache& programs,
                                              std::vector<CheckedOutput>& outputs) {
-    const VkDescriptorType bindings[] = {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
-    auto range = programs.compute("ibl/output_range.comp", bindings, sizeof(uint32_t));
+    auto range = programs.compute("ibl/output_range.comp");
     if (!range) return range.error();
     BufferHandle ranges = graph.create_buffer("output ranges", {VkDeviceSize(outputs.size() * 2 * sizeof(uint32_t))});
     graph.add_transfer_pass("output ranges clear", [&](PassBuilder& b) { ranges = b.write(ranges, Access::transfer_dst); },
@@ -49,7 +48,9 @@ Result<BufferHandle> add_output_range_passes(RenderGraph& graph, ProgramCache& p
                     DescriptorWrite::storage_image(pc.view(image, ImageRange::mip(m), VK_IMAGE_VIEW_TYPE_2D_ARRAY)),
                     DescriptorWrite::storage_buffer(pc.buffer(ranges))};
                 p->push_descriptors(pc.cmd(), writes);
-                vkCmdDispatch(pc.cmd(), (desc.mip_width(m) + 7) / 8, (desc.mip_height(m) + 7) / 8, desc.array_layers);
+                const auto local = p->workgroup_size();
+                vkCmdDispatch(pc.cmd(), group_count(desc.mip_width(m), local[0]), group_count(desc.mip_height(m), local[1]),
+                              desc.array_layers);
             }
         });
     }
