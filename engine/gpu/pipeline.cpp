@@ -27,8 +27,11 @@ Status create_module(Context& context, std::span<const uint32_t> spirv, const st
     info.codeSize = spirv.size_bytes();
     info.pCode = spirv.data();
     out.device = context.device();
-    if (VkResult r = vkCreateShaderModule(out.device, &info, nullptr, &out.module); r != VK_SUCCESS)
+    // A failed vkCreate* leaves its output undefined: the owners see VK_NULL_HANDLE.
+    if (VkResult r = vkCreateShaderModule(out.device, &info, nullptr, &out.module); r != VK_SUCCESS) {
+        out.module = VK_NULL_HANDLE;
         return Error{name + ": vkCreateShaderModule failed (" + vk_result_name(r) + ")", r};
+    }
     context.set_name(out.module, VK_OBJECT_TYPE_SHADER_MODULE, name);
     return Ok{};
 }
@@ -53,8 +56,11 @@ Result<PipelineLayout> PipelineLayout::create(Context& context, const ShaderRefl
     set_info.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
     set_info.bindingCount = static_cast<uint32_t>(layout_bindings.size());
     set_info.pBindings = layout_bindings.data();
-    if (VkResult r = vkCreateDescriptorSetLayout(context.device(), &set_info, nullptr, &l.set_layout_); r != VK_SUCCESS)
+    if (VkResult r = vkCreateDescriptorSetLayout(context.device(), &set_info, nullptr, &l.set_layout_);
+        r != VK_SUCCESS) {
+        l.set_layout_ = VK_NULL_HANDLE;
         return Error{name + ": vkCreateDescriptorSetLayout failed (" + vk_result_name(r) + ")", r};
+    }
     context.set_name(l.set_layout_, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, name);
 
     VkPushConstantRange push{reflection.stages, 0, reflection.push_constant_bytes};
@@ -63,8 +69,10 @@ Result<PipelineLayout> PipelineLayout::create(Context& context, const ShaderRefl
     info.pSetLayouts = &l.set_layout_;
     info.pushConstantRangeCount = reflection.push_constant_bytes ? 1 : 0;
     info.pPushConstantRanges = &push;
-    if (VkResult r = vkCreatePipelineLayout(context.device(), &info, nullptr, &l.layout_); r != VK_SUCCESS)
+    if (VkResult r = vkCreatePipelineLayout(context.device(), &info, nullptr, &l.layout_); r != VK_SUCCESS) {
+        l.layout_ = VK_NULL_HANDLE;
         return Error{name + ": vkCreatePipelineLayout failed (" + vk_result_name(r) + ")", r};
+    }
     context.set_name(l.layout_, VK_OBJECT_TYPE_PIPELINE_LAYOUT, name);
     return l;
 }

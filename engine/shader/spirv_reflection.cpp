@@ -70,18 +70,12 @@ std::string literal_string(std::span<const uint32_t> words) {
 // The operands the reader indexes, so that a malformed module is an error, never a read
 // past the instruction.
 size_t min_type_operands(uint32_t opcode) {
-    switch (opcode) {
-        case op::type_image: return 8;
-        case op::type_int:
-        case op::type_vector:
-        case op::type_matrix:
-        case op::type_array:
-        case op::type_pointer: return 3;
-        case op::type_float:
-        case op::type_sampled_image:
-        case op::type_runtime_array: return 2;
-        default: return 1;
-    }
+    if (opcode == op::type_image) return 8;
+    if (opcode == op::type_int || opcode == op::type_vector || opcode == op::type_matrix ||
+        opcode == op::type_array || opcode == op::type_pointer)
+        return 3;
+    if (opcode == op::type_float || opcode == op::type_sampled_image || opcode == op::type_runtime_array) return 2;
+    return 1;
 }
 
 bool has(const Module& m, uint32_t id, uint32_t d) {

@@ -179,6 +179,32 @@ void main() { o[gl_GlobalInvocationID.x] = gl_WorkGroupSize.x; }
     EXPECT_EQ(r->workgroup_size, (Workgroup{32, 3, 1}));
 }
 
+// The constant decorated BuiltIn WorkgroupSize wins over the LocalSize execution mode
+// (SPIR-V specification, BuiltIn WorkgroupSize): the specialisation constant's default
+// is changed to 48 in the module, LocalSize still says 32.
+TEST(ShaderReflection, WorkgroupSizeBuiltInOverridesLocalSize) {
+    ShaderCompiler compiler;
+    auto spirv = compiler.compile_source(ShaderStage::compute, "spec.comp", R"(#version 460
+layout(local_size_x = 32, local_size_y = 3) in;
+layout(local_size_x_id = 7) in;
+layout(std430, binding = 0) buffer Out { uint o[]; };
+void main() { o[gl_GlobalInvocationID.x] = gl_WorkGroupSize.x; }
+)");
+    ASSERT_TRUE(spirv) << spirv.error().message;
+    std::vector<uint32_t> words = spirv->words;
+    constexpr uint32_t op_spec_constant = 50;
+    int patched = 0;
+    for (size_t at = 5; at < words.size(); at += words[at] >> 16)
+        if ((words[at] & 0xffffu) == op_spec_constant && words[at + 3] == 32) {
+            words[at + 3] = 48;
+            ++patched;
+        }
+    ASSERT_GT(patched, 0) << "no specialisation constant of 32 in the module";
+    auto r = reflect_spirv(words, "spec.comp (patched)");
+    ASSERT_TRUE(r) << r.error().message;
+    EXPECT_EQ(r->workgroup_size, (Workgroup{48, 3, 1}));
+}
+
 TEST(ShaderReflection, ResourcesOutsideSetZeroAreAnError) {
     auto r = reflect_source(ShaderStage::compute, R"(#version 460
 layout(local_size_x = 1) in;
