@@ -16,6 +16,7 @@
 #include <facet/shader/program_cache.h>
 #include "ibl/bake_cancel.h"
 #include "ibl/baked_outputs.h"
+#include "core/guarded.h"
 
 namespace facet {
 
@@ -66,10 +67,10 @@ ReadBack run_bake_graph(Context& context, ProgramCache& programs, const Environm
     meta.passes = uint32_t(compiled.passes.size());
     if (cb.progress) cb.progress("running " + std::to_string(compiled.passes.size()) + " passes");
     GraphRun run(context, compiled);
-    run.submit_and_wait([&](uint32_t done, uint32_t total, const std::string& pass) {
+    or_throw(run.submit_and_wait([&](uint32_t done, uint32_t total, const std::string& pass) {
         if (cb.pass_done) cb.pass_done(done, total, pass);
         bake_safe_point(cb.stop, "pass");
-    });
+    }));
     ReadBack r;
     r.timings = run.timings();
     auto read = [&](ImageHandle h, Levels& levels, ImageDesc& desc) {
@@ -84,11 +85,11 @@ ReadBack run_bake_graph(Context& context, ProgramCache& programs, const Environm
     read(images.irradiance, r.irradiance, r.irradiance_desc);
     read(images.lut, r.lut, r.lut_desc);
     auto preview_bytes =
-        read_image(context, *run.transient_image(preview), 0, 0, kReadable.layout);
+        or_throw(read_image(context, *run.transient_image(preview), 0, 0, kReadable.layout));
     r.preview.resize(preview_bytes.size());
     std::memcpy(r.preview.data(), preview_bytes.data(), preview_bytes.size());
     if (images.sh9.valid()) {
-        auto bytes = read_buffer(context, *run.transient_buffer(images.sh9));
+        auto bytes = or_throw(read_buffer(context, *run.transient_buffer(images.sh9)));
         r.sh9.resize(bytes.size() / sizeof(float));
         std::memcpy(r.sh9.data(), bytes.data(), r.sh9.size() * sizeof(float));
     }
@@ -191,7 +192,7 @@ Result<BakedEnvironment> bake(Context& context, ProgramCache& programs, const En
     if (!r.lut.empty()) A::lut(out) = keep(r.lut, r.lut_desc, 0, "brdf lut", meta.lut_format);
     A::sh9(out) = std::move(r.sh9);
     A::preview(out) = std::move(r.preview);
-    A::cube_sampler(out) = Sampler(context, VK_FILTER_LINEAR, true, false, "baked cube sampler");
+    A::cube_sampler(out) = or_throw(Sampler::create(context, VK_FILTER_LINEAR, true, false, "baked cube sampler"));
     meta.wall_time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return out;
 }

@@ -6,6 +6,7 @@
 
 #include <facet/gpu/transfer.h>
 #include <facet/io/ktx2.h>
+#include "core/guarded.h"
 
 namespace facet {
 
@@ -23,7 +24,7 @@ Levels read_levels(Context& context, const Image& image, VkImageLayout layout) {
     for (uint32_t m = 0; m < d.mip_levels; ++m) {
         std::vector<std::byte> level;
         for (uint32_t layer = 0; layer < d.array_layers; ++layer) {
-            auto bytes = read_image(context, image, m, layer, layout);
+            auto bytes = or_throw(read_image(context, image, m, layer, layout));
             level.insert(level.end(), bytes.begin(), bytes.end());
         }
         levels.push_back(std::move(level));
@@ -32,14 +33,14 @@ Levels read_levels(Context& context, const Image& image, VkImageLayout layout) {
 }
 
 Image make_baked_image(Context& context, const ImageDesc& desc, const Levels& levels, const std::string& name) {
-    Image image(context, desc,
-                VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, name);
+    Image image = or_throw(Image::create(
+        context, desc, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, name));
     for (uint32_t m = 0; m < desc.mip_levels; ++m) {
         const size_t layer_bytes = levels[m].size() / desc.array_layers;
         for (uint32_t layer = 0; layer < desc.array_layers; ++layer)
-            upload_image(context, image, m, layer,
-                         std::span<const std::byte>(levels[m].data() + layer * layer_bytes, layer_bytes),
-                         VK_IMAGE_LAYOUT_UNDEFINED, kBakedLayout);
+            or_throw(upload_image(context, image, m, layer,
+                                  std::span<const std::byte>(levels[m].data() + layer * layer_bytes, layer_bytes),
+                                  VK_IMAGE_LAYOUT_UNDEFINED, kBakedLayout));
     }
     return image;
 }
