@@ -81,9 +81,9 @@ public:
     GraphRun(const GraphRun&) = delete;
     GraphRun& operator=(const GraphRun&) = delete;
 
-    // Allocates the physical resources (once; later calls return the first outcome's
-    // success at no cost). An Error names a graph the device cannot hold or the
-    // allocation that failed; nothing is left half made.
+    // Allocates the physical resources (after a success, later calls do nothing). An
+    // Error names a graph the device cannot hold or the allocation that failed; nothing
+    // is left half made (what was taken from the pool goes back to it).
     Status prepare();
     // Records everything into the host's command buffer (which must be recording).
     Status record(VkCommandBuffer cmd);
