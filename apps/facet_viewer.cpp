@@ -186,7 +186,9 @@ int run(const Options& o) {
             dropped_into->reload = true;
         }
     });
-    Sampler nearest(context, VK_FILTER_NEAREST, false, false, "viewer nearest");
+    auto made_nearest = Sampler::create(context, VK_FILTER_NEAREST, false, false, "viewer nearest");
+    if (!made_nearest) throw std::runtime_error(made_nearest.error().message);
+    const Sampler nearest = std::move(*made_nearest);
     ShaderCompilerOptions compiler_options;
     compiler_options.source_dir = o.job.shader_dir;
     ShaderCompiler compiler(compiler_options);
@@ -285,12 +287,16 @@ int run(const Options& o) {
         if (controls.material_changed) {
             controls.material_changed = false;
             vkDeviceWaitIdle(context.device());
-            if (controls.override_material)
-                session->override_materials(RenderSession::MaterialFactors{
-                    controls.albedo, controls.metallic, controls.roughness, controls.occlusion,
-                    controls.albedo_texture, controls.metal_rough_texture, controls.occlusion_texture});
-            else
-                session->override_materials(std::nullopt);
+            Status changed = controls.override_material
+                                 ? session->override_materials(RenderSession::MaterialFactors{
+                                       controls.albedo, controls.metallic, controls.roughness, controls.occlusion,
+                                       controls.albedo_texture, controls.metal_rough_texture,
+                                       controls.occlusion_texture})
+                                 : session->override_materials(std::nullopt);
+            if (!changed) {
+                controls.status = "materials not changed: " + changed.error().message;
+                log(controls.status);
+            }
         }
         const double now = glfwGetTime();
         if (!ui->wants_mouse() && !ui->wants_keyboard()) camera.update(window, now - last);
@@ -425,9 +431,11 @@ int run(const Options& o) {
             auto ldr_bytes = read_image(context, *run.transient_image(shown), 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
             auto hdr_bytes = read_image(context, *run.transient_image(images->hdr), 0, 0,
                                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-            std::vector<float> hdr(hdr_bytes.size() / 4);
-            std::memcpy(hdr.data(), hdr_bytes.data(), hdr.size() * 4);
-            if (Status st = save(screenshot, extent.width, extent.height, ldr_bytes, hdr, settings.display.exposure); !st)
+            if (!ldr_bytes) throw std::runtime_error(ldr_bytes.error().message);
+            if (!hdr_bytes) throw std::runtime_error(hdr_bytes.error().message);
+            std::vector<float> hdr(hdr_bytes->size() / 4);
+            std::memcpy(hdr.data(), hdr_bytes->data(), hdr.size() * 4);
+            if (Status st = save(screenshot, extent.width, extent.height, *ldr_bytes, hdr, settings.display.exposure); !st)
                 throw std::runtime_error(st.error().message);
             log("saved " + screenshot);
             screenshot.clear();

@@ -1,5 +1,6 @@
 #include "viewer_ui.h"
 
+#include <stdexcept>
 #include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_vulkan.h>
@@ -64,7 +65,9 @@ ViewerUi::ViewerUi(Context& context, GLFWwindow* window, const Swapchain& swapch
     init.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
     init.CheckVkResultFn = check_vk;
     ImGui_ImplVulkan_Init(&init, render_pass_);
-    context.submit_and_wait([](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
+    if (Status fonts = context.submit_and_wait([](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
+        !fonts)
+        throw std::runtime_error("viewer fonts: " + fonts.error().message);
     ImGui_ImplVulkan_DestroyFontUploadObjects();
     rebuild(swapchain);
 }

@@ -29,6 +29,8 @@ std::string vk_result_meaning(VkResult result) {
 VulkanError::VulkanError(VkResult result, const std::string& what)
     : std::runtime_error(what + ": " + vk_result_name(result) + vk_result_meaning(result)), result_(result) {}
 
+VulkanError::VulkanError(const Error& error) : std::runtime_error(error.message), result_(error.vk_result) {}
+
 const char* vk_result_name(VkResult result) {
     switch (result) {
 #define FACET_CASE(x) \

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <facet/core/log.h>
+#include "core/guarded.h"
 #include "gpu/device_selection.h"
 #include "gpu/fault_injection.h"
 #include <facet/gpu/memory.h>
@@ -322,7 +323,18 @@ void Context::set_name(VkObjectType type, uint64_t handle, const std::string& na
     set_object_name_(device_, &info);
 }
 
-void Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record, const char* what) {
+Status Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record, const char* what) {
+    return guarded([&] { submit_recorded(record, what); });
+}
+
+Status Context::submit_and_wait(VkCommandBuffer cmd, const char* what) {
+    return guarded([&] {
+        std::lock_guard lock(submit_mutex_);
+        submit_locked(cmd, what);
+    });
+}
+
+void Context::submit_recorded(const std::function<void(VkCommandBuffer)>& record, const char* what) {
     std::lock_guard lock(submit_mutex_);
     VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     alloc.commandPool = command_pool_;
@@ -345,11 +357,6 @@ void Context::submit_and_wait(const std::function<void(VkCommandBuffer)>& record
     vk_check(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer");
     record(cmd);
     vk_check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
-    submit_locked(cmd, what);
-}
-
-void Context::submit_and_wait(VkCommandBuffer cmd, const char* what) {
-    std::lock_guard lock(submit_mutex_);
     submit_locked(cmd, what);
 }
 

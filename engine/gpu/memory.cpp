@@ -5,6 +5,7 @@
 #include <string>
 
 #include <facet/core/result.h>
+#include "core/guarded.h"
 #include "gpu/fault_injection.h"
 
 namespace facet {
@@ -96,8 +97,21 @@ Allocation Allocator::allocate_dedicated(VkDeviceSize size, uint32_t type, VkBuf
     return a;
 }
 
-Allocation Allocator::allocate(const VkMemoryRequirements& requirements, MemoryUsage usage,
-                               bool dedicated) {
+Result<Allocation> Allocator::allocate(const VkMemoryRequirements& requirements, MemoryUsage usage,
+                                       bool dedicated) {
+    return guarded([&]() -> Result<Allocation> { return allocate_or_throw(requirements, usage, dedicated); });
+}
+
+Result<Allocation> Allocator::allocate_for(VkBuffer buffer, MemoryUsage usage) {
+    return guarded([&]() -> Result<Allocation> { return bind_or_throw(buffer, usage); });
+}
+
+Result<Allocation> Allocator::allocate_for(VkImage image, MemoryUsage usage) {
+    return guarded([&]() -> Result<Allocation> { return bind_or_throw(image, usage); });
+}
+
+Allocation Allocator::allocate_or_throw(const VkMemoryRequirements& requirements, MemoryUsage usage,
+                                        bool dedicated) {
     fail_if_injected(requirements.size);
     std::lock_guard lock(mutex_);
     const uint32_t type = find_memory_type(requirements.memoryTypeBits, usage);
@@ -166,7 +180,7 @@ Allocation Allocator::allocate(const VkMemoryRequirements& requirements, MemoryU
     return *try_block(index);
 }
 
-Allocation Allocator::allocate_for(VkBuffer buffer, MemoryUsage usage) {
+Allocation Allocator::bind_or_throw(VkBuffer buffer, MemoryUsage usage) {
     VkBufferMemoryRequirementsInfo2 info{VK_STRUCTURE_TYPE_BUFFER_MEMORY_REQUIREMENTS_INFO_2};
     info.buffer = buffer;
     VkMemoryDedicatedRequirements dedicated{VK_STRUCTURE_TYPE_MEMORY_DEDICATED_REQUIREMENTS};
@@ -181,7 +195,7 @@ Allocation Allocator::allocate_for(VkBuffer buffer, MemoryUsage usage) {
         std::lock_guard lock(mutex_);
         a = allocate_dedicated(r.size, find_memory_type(r.memoryTypeBits, usage), buffer, VK_NULL_HANDLE);
     } else {
-        a = allocate(r, usage);
+        a = allocate_or_throw(r, usage, false);
     }
     if (VkResult res = vkBindBufferMemory(device_, buffer, a.memory, a.offset); res != VK_SUCCESS) {
         free(a);
@@ -190,7 +204,7 @@ Allocation Allocator::allocate_for(VkBuffer buffer, MemoryUsage usage) {
     return a;
 }
 
-Allocation Allocator::allocate_for(VkImage image, MemoryUsage usage) {
+Allocation Allocator::bind_or_throw(VkImage image, MemoryUsage usage) {
     VkImageMemoryRequirementsInfo2 info{VK_STRUCTURE_TYPE_IMAGE_MEMORY_REQUIREMENTS_INFO_2};
     info.image = image;
     VkMemoryDedicatedRequirements dedicated{VK_STRUCTURE_TYPE_MEMORY_DEDICATED_REQUIREMENTS};
@@ -205,7 +219,7 @@ Allocation Allocator::allocate_for(VkImage image, MemoryUsage usage) {
         std::lock_guard lock(mutex_);
         a = allocate_dedicated(r.size, find_memory_type(r.memoryTypeBits, usage), VK_NULL_HANDLE, image);
     } else {
-        a = allocate(r, usage);
+        a = allocate_or_throw(r, usage, false);
     }
     if (VkResult res = vkBindImageMemory(device_, image, a.memory, a.offset); res != VK_SUCCESS) {
         free(a);
@@ -250,22 +264,26 @@ void Allocator::free(Allocation& a) {
     a = Allocation{};
 }
 
-void Allocator::flush(const Allocation& a) {
-    if (!a.memory || a.coherent) return;
+Status Allocator::flush(const Allocation& a) {
+    if (!a.memory || a.coherent) return Ok{};
     VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE};
     range.memory = a.memory;
     range.offset = a.offset / non_coherent_atom_ * non_coherent_atom_;
     range.size = VK_WHOLE_SIZE;
-    vk_check(vkFlushMappedMemoryRanges(device_, 1, &range), "vkFlushMappedMemoryRanges");
+    if (VkResult r = vkFlushMappedMemoryRanges(device_, 1, &range); r != VK_SUCCESS)
+        return Error{VulkanError(r, "vkFlushMappedMemoryRanges").what(), r};
+    return Ok{};
 }
 
-void Allocator::invalidate(const Allocation& a) {
-    if (!a.memory || a.coherent) return;
+Status Allocator::invalidate(const Allocation& a) {
+    if (!a.memory || a.coherent) return Ok{};
     VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE};
     range.memory = a.memory;
     range.offset = a.offset / non_coherent_atom_ * non_coherent_atom_;
     range.size = VK_WHOLE_SIZE;
-    vk_check(vkInvalidateMappedMemoryRanges(device_, 1, &range), "vkInvalidateMappedMemoryRanges");
+    if (VkResult r = vkInvalidateMappedMemoryRanges(device_, 1, &range); r != VK_SUCCESS)
+        return Error{VulkanError(r, "vkInvalidateMappedMemoryRanges").what(), r};
+    return Ok{};
 }
 
 AllocatorStats Allocator::stats() const {

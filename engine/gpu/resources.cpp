@@ -4,6 +4,7 @@
 
 #include <facet/core/result.h>
 #include <facet/gpu/context.h>
+#include "core/guarded.h"
 
 namespace facet {
 
@@ -61,14 +62,19 @@ Buffer::Buffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, Me
     info.usage = usage;
     info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     vk_check(vkCreateBuffer(context.device(), &info, nullptr, &buffer_), ("vkCreateBuffer " + name).c_str());
-    try {
-        allocation_ = context.allocator().allocate_for(buffer_, memory);
-    } catch (...) {
+    Result<Allocation> allocation = context.allocator().allocate_for(buffer_, memory);
+    if (!allocation) {
         vkDestroyBuffer(context.device(), buffer_, nullptr);
         buffer_ = VK_NULL_HANDLE;
-        throw;
+        throw VulkanError(Error{"buffer '" + name + "': " + allocation.error().message, allocation.error().vk_result});
     }
+    allocation_ = *allocation;
     context.set_name(buffer_, VK_OBJECT_TYPE_BUFFER, name);
+}
+
+Result<Buffer> Buffer::create(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory,
+                              const std::string& name) {
+    return guarded([&]() -> Result<Buffer> { return Buffer(context, size, usage, memory, name); });
 }
 
 Buffer::~Buffer() { reset(); }
@@ -99,8 +105,10 @@ void Buffer::reset() {
     buffer_ = VK_NULL_HANDLE;
 }
 
-void Buffer::flush() const { context_->allocator().flush(allocation_); }
-void Buffer::invalidate() const { context_->allocator().invalidate(allocation_); }
+Status Buffer::flush() const { return context_ ? context_->allocator().flush(allocation_) : Status(Ok{}); }
+Status Buffer::invalidate() const {
+    return context_ ? context_->allocator().invalidate(allocation_) : Status(Ok{});
+}
 
 // ---- Image ----
 
@@ -121,14 +129,19 @@ Image::Image(Context& context, const ImageDesc& desc, VkImageUsageFlags usage, c
     info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     vk_check(vkCreateImage(context.device(), &info, nullptr, &image_), ("vkCreateImage " + name).c_str());
-    try {
-        allocation_ = context.allocator().allocate_for(image_, MemoryUsage::gpu_only);
-    } catch (...) {
+    Result<Allocation> allocation = context.allocator().allocate_for(image_, MemoryUsage::gpu_only);
+    if (!allocation) {
         vkDestroyImage(context.device(), image_, nullptr);
         image_ = VK_NULL_HANDLE;
-        throw;
+        throw VulkanError(Error{"image '" + name + "': " + allocation.error().message, allocation.error().vk_result});
     }
+    allocation_ = *allocation;
     context.set_name(image_, VK_OBJECT_TYPE_IMAGE, name);
+}
+
+Result<Image> Image::create(Context& context, const ImageDesc& desc, VkImageUsageFlags usage,
+                            const std::string& name) {
+    return guarded([&]() -> Result<Image> { return Image(context, desc, usage, name); });
 }
 
 Image::~Image() { reset(); }
@@ -198,10 +211,14 @@ VkImageView Image::view(VkImageSubresourceRange range, VkImageViewType type) {
     return view;
 }
 
+Result<VkImageView> Image::try_view(VkImageSubresourceRange range, VkImageViewType type) {
+    return guarded([&]() -> Result<VkImageView> { return view(range, type); });
+}
+
 // ---- Sampler ----
 
-Sampler::Sampler(Context& context, VkFilter filter, bool mipmaps, bool repeat_u, const std::string& name)
-    : context_(&context) {
+Result<Sampler> Sampler::create(Context& context, VkFilter filter, bool mipmaps, bool repeat_u,
+                                const std::string& name) {
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     info.magFilter = filter;
     info.minFilter = filter;
@@ -210,12 +227,15 @@ Sampler::Sampler(Context& context, VkFilter filter, bool mipmaps, bool repeat_u,
     info.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     info.maxLod = mipmaps ? VK_LOD_CLAMP_NONE : 0.0f;
-    vk_check(vkCreateSampler(context.device(), &info, nullptr, &sampler_), "vkCreateSampler");
-    context.set_name(sampler_, VK_OBJECT_TYPE_SAMPLER, name);
+    return create(context, info, name);
+}
+
+Result<Sampler> Sampler::create(Context& context, const VkSamplerCreateInfo& info, const std::string& name) {
+    return guarded([&]() -> Result<Sampler> { return Sampler(context, info, name); });
 }
 
 Sampler::Sampler(Context& context, const VkSamplerCreateInfo& info, const std::string& name) : context_(&context) {
-    vk_check(vkCreateSampler(context.device(), &info, nullptr, &sampler_), "vkCreateSampler");
+    vk_check(vkCreateSampler(context.device(), &info, nullptr, &sampler_), ("vkCreateSampler " + name).c_str());
     context.set_name(sampler_, VK_OBJECT_TYPE_SAMPLER, name);
 }
 

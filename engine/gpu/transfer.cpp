@@ -4,6 +4,7 @@
 
 #include <facet/core/result.h>
 #include <facet/gpu/context.h>
+#include "core/guarded.h"
 
 namespace facet {
 
@@ -68,33 +69,38 @@ void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageSubresourceRange r
     vkCmdPipelineBarrier2(cmd, &dep);
 }
 
-void upload_image(Context& context, Image& image, uint32_t mip, uint32_t layer,
-                  std::span<const std::byte> data, VkImageLayout current_layout, VkImageLayout final_layout) {
+Status upload_image(Context& context, Image& image, uint32_t mip, uint32_t layer,
+                    std::span<const std::byte> data, VkImageLayout current_layout, VkImageLayout final_layout) {
     check_subresource(image, mip, layer);
     const VkDeviceSize bytes = subresource_bytes(image.desc(), mip);
     if (data.size() != bytes)
         throw UsageError("upload_image: " + std::to_string(data.size()) + " bytes given, the subresource holds " +
                          std::to_string(bytes));
-    Buffer staging(context, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::upload, "upload staging");
-    std::memcpy(staging.mapped(), data.data(), bytes);
-    staging.flush();
+    auto staging = Buffer::create(context, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::upload,
+                                  "upload staging");
+    if (!staging) return staging.error();
+    std::memcpy(staging->mapped(), data.data(), bytes);
+    if (Status flushed = staging->flush(); !flushed) return flushed;
     VkImageSubresourceRange range{aspect_of(image.desc().format), mip, 1, layer, 1};
-    context.submit_and_wait([&](VkCommandBuffer cmd) {
+    return context.submit_and_wait([&](VkCommandBuffer cmd) {
         layout_transition(cmd, image.handle(), range, current_layout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
         VkBufferImageCopy region = copy_region(image, mip, layer);
-        vkCmdCopyBufferToImage(cmd, staging.handle(), image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+        vkCmdCopyBufferToImage(cmd, staging->handle(), image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
                                &region);
         layout_transition(cmd, image.handle(), range, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, final_layout);
     });
 }
 
-std::vector<std::byte> read_image(Context& context, const Image& image, uint32_t mip, uint32_t layer,
-                                  VkImageLayout current_layout) {
+Result<std::vector<std::byte>> read_image(Context& context, const Image& image, uint32_t mip, uint32_t layer,
+                                          VkImageLayout current_layout) {
     check_subresource(image, mip, layer);
     const VkDeviceSize bytes = subresource_bytes(image.desc(), mip);
-    Buffer staging(context, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::readback, "readback staging");
+    auto made = Buffer::create(context, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::readback,
+                               "readback staging");
+    if (!made) return made.error();
+    Buffer& staging = *made;
     VkImageSubresourceRange range{aspect_of(image.desc().format), mip, 1, layer, 1};
-    context.submit_and_wait([&](VkCommandBuffer cmd) {
+    Status done = context.submit_and_wait([&](VkCommandBuffer cmd) {
         layout_transition(cmd, image.handle(), range, current_layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
         VkBufferImageCopy region = copy_region(image, mip, layer);
         vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(), 1,
@@ -103,23 +109,26 @@ std::vector<std::byte> read_image(Context& context, const Image& image, uint32_t
         memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                        VK_ACCESS_2_HOST_READ_BIT);
     });
-    staging.invalidate();
+    if (!done) return done.error();
+    if (Status visible = staging.invalidate(); !visible) return visible.error();
     std::vector<std::byte> out(bytes);
     std::memcpy(out.data(), staging.mapped(), bytes);
     return out;
 }
 
-void upload_buffer(Context& context, Buffer& buffer, std::span<const std::byte> data) {
+Status upload_buffer(Context& context, Buffer& buffer, std::span<const std::byte> data) {
     if (data.size() > buffer.size()) throw UsageError("upload_buffer: data larger than the buffer");
     if (buffer.mapped()) {
         std::memcpy(buffer.mapped(), data.data(), data.size());
-        buffer.flush();
-        return;
+        return buffer.flush();
     }
-    Buffer staging(context, data.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::upload, "upload staging");
+    auto made = Buffer::create(context, data.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::upload,
+                               "upload staging");
+    if (!made) return made.error();
+    Buffer& staging = *made;
     std::memcpy(staging.mapped(), data.data(), data.size());
-    staging.flush();
-    context.submit_and_wait([&](VkCommandBuffer cmd) {
+    if (Status flushed = staging.flush(); !flushed) return flushed;
+    return context.submit_and_wait([&](VkCommandBuffer cmd) {
         VkBufferCopy region{0, 0, data.size()};
         vkCmdCopyBuffer(cmd, staging.handle(), buffer.handle(), 1, &region);
         memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
@@ -127,16 +136,18 @@ void upload_buffer(Context& context, Buffer& buffer, std::span<const std::byte> 
     });
 }
 
-std::vector<std::byte> read_buffer(Context& context, const Buffer& buffer) {
+Result<std::vector<std::byte>> read_buffer(Context& context, const Buffer& buffer) {
     std::vector<std::byte> out(buffer.size());
     if (buffer.mapped()) {
-        buffer.invalidate();
+        if (Status visible = buffer.invalidate(); !visible) return visible.error();
         std::memcpy(out.data(), buffer.mapped(), out.size());
         return out;
     }
-    Buffer staging(context, buffer.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::readback,
-                   "readback staging");
-    context.submit_and_wait([&](VkCommandBuffer cmd) {
+    auto made = Buffer::create(context, buffer.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::readback,
+                               "readback staging");
+    if (!made) return made.error();
+    Buffer& staging = *made;
+    Status done = context.submit_and_wait([&](VkCommandBuffer cmd) {
         memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
         VkBufferCopy region{0, 0, buffer.size()};
@@ -144,7 +155,8 @@ std::vector<std::byte> read_buffer(Context& context, const Buffer& buffer) {
         memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                        VK_ACCESS_2_HOST_READ_BIT);
     });
-    staging.invalidate();
+    if (!done) return done.error();
+    if (Status visible = staging.invalidate(); !visible) return visible.error();
     std::memcpy(out.data(), staging.mapped(), out.size());
     return out;
 }

@@ -34,11 +34,11 @@ Result<GraphRun*> GraphExecutor::prepare(const CompiledGraph& compiled, uint32_t
         s.run->release_into(s.pool);
         s.run.reset();
     }
-    try {
-        s.run = std::make_unique<GraphRun>(context_, compiled, s.pool);
-    } catch (const VulkanError& e) {
+    s.run = std::make_unique<GraphRun>(context_, compiled, s.pool);
+    if (Status made = s.run->prepare(); !made) {
+        s.run.reset();
         free_pool(s.pool);
-        return Error{e.what(), e.result()};
+        return made.error();
     }
     // What this shape does not use is not kept for a shape that may never come back.
     s.pool.images.clear();
@@ -49,11 +49,7 @@ Result<GraphRun*> GraphExecutor::prepare(const CompiledGraph& compiled, uint32_t
 Result<GraphRun*> GraphExecutor::record(const CompiledGraph& compiled, VkCommandBuffer cmd, uint32_t frame) {
     auto run = prepare(compiled, frame);
     if (!run) return run.error();
-    try {
-        (*run)->record(cmd);
-    } catch (const VulkanError& e) {
-        return Error{e.what(), e.result()};
-    }
+    if (Status recorded = (*run)->record(cmd); !recorded) return recorded.error();
     return run;
 }
 
@@ -61,12 +57,8 @@ Result<GraphRun*> GraphExecutor::submit_and_wait(const CompiledGraph& compiled, 
                                                  const GraphRun::Progress& progress) {
     auto run = prepare(compiled, frame);
     if (!run) return run.error();
-    try {
-        if (progress) (*run)->submit_and_wait(progress);
-        else (*run)->submit_and_wait();
-    } catch (const VulkanError& e) {
-        return Error{e.what(), e.result()};
-    }
+    Status done = progress ? (*run)->submit_and_wait(progress) : (*run)->submit_and_wait();
+    if (!done) return done.error();
     return run;
 }
 

@@ -6,6 +6,7 @@
 #include <facet/core/result.h>
 #include <facet/gpu/context.h>
 #include <facet/gpu/device_limits.h>
+#include "core/guarded.h"
 
 namespace facet {
 
@@ -39,12 +40,37 @@ VkDeviceSize PassContext::size(BufferHandle buffer) const {
 // ---- GraphRun ----
 
 GraphRun::GraphRun(Context& context, const CompiledGraph& compiled) : context_(context), compiled_(&compiled) {
-    allocate(nullptr);
+    // Kept for timings(), which a host reads after its fence, when the graph may be gone.
+    for (const CompiledPass& cp : compiled_->passes) pass_names_.push_back(compiled_->graph->passes()[cp.pass].name);
 }
 
 GraphRun::GraphRun(Context& context, const CompiledGraph& compiled, GraphResourcePool& pool)
-    : context_(context), compiled_(&compiled) {
-    allocate(&pool);
+    : GraphRun(context, compiled) {
+    pool_ = &pool;
+}
+
+Status GraphRun::prepare() {
+    if (prepared_) return Ok{};
+    Status made = guarded([&] { allocate(pool_); });
+    if (!made) {
+        // Nothing half made is kept: what was taken from the pool goes back to it.
+        if (pool_) release_into(*pool_);
+        else release_all();
+        return made;
+    }
+    pool_ = nullptr;
+    prepared_ = true;
+    return Ok{};
+}
+
+void GraphRun::release_all() {
+    for (auto& [key, view] : views_) vkDestroyImageView(context_.device(), view, nullptr);
+    views_.clear();
+    images_.clear();
+    buffers_.clear();
+    if (queries_) vkDestroyQueryPool(context_.device(), queries_, nullptr);
+    queries_ = VK_NULL_HANDLE;
+    query_count_ = 0;
 }
 
 GraphRun::~GraphRun() {
@@ -72,8 +98,6 @@ void GraphRun::release_into(GraphResourcePool& pool) {
 }
 
 void GraphRun::allocate(GraphResourcePool* pool) {
-    // Kept for timings(), which a host reads after its fence, when the graph may be gone.
-    for (const CompiledPass& cp : compiled_->passes) pass_names_.push_back(compiled_->graph->passes()[cp.pass].name);
     // Sizes no device holds fail here, by name, rather than half way through allocating.
     if (Status fits = check_graph_fits(context_, *compiled_); !fits)
         throw VulkanError(VK_ERROR_OUT_OF_DEVICE_MEMORY, "render graph: " + fits.error().message);
@@ -91,7 +115,7 @@ void GraphRun::allocate(GraphResourcePool* pool) {
                 continue;
             }
         }
-        images_[p] = Image(context_, phys.image_desc, phys.image_usage, phys.name);
+        images_[p] = or_throw(Image::create(context_, phys.image_desc, phys.image_usage, phys.name));
     }
     buffers_.resize(compiled_->physical_buffers.size());
     for (size_t p = 0; p < buffers_.size(); ++p) {
@@ -107,7 +131,8 @@ void GraphRun::allocate(GraphResourcePool* pool) {
                 continue;
             }
         }
-        buffers_[p] = Buffer(context_, phys.buffer_desc.size, phys.buffer_usage, MemoryUsage::gpu_only, phys.name);
+        buffers_[p] = or_throw(
+            Buffer::create(context_, phys.buffer_desc.size, phys.buffer_usage, MemoryUsage::gpu_only, phys.name));
     }
     uint32_t family_count = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(context_.physical_device(), &family_count, nullptr);
@@ -134,12 +159,14 @@ void GraphRun::allocate(GraphResourcePool* pool) {
 VkImage GraphRun::physical_image(uint32_t p) const {
     const PhysicalResource& phys = compiled_->physical_images[p];
     if (phys.imported) return compiled_->graph->resources()[phys.imported_resource].imported_image.image;
+    if (!prepared_) throw UsageError("GraphRun: image '" + phys.name + "' looked up before prepare()");
     return images_[p].handle();
 }
 
 VkBuffer GraphRun::physical_buffer(uint32_t p) const {
     const PhysicalResource& phys = compiled_->physical_buffers[p];
     if (phys.imported) return compiled_->graph->resources()[phys.imported_resource].imported_buffer.buffer;
+    if (!prepared_) throw UsageError("GraphRun: buffer '" + phys.name + "' looked up before prepare()");
     return buffers_[p].handle();
 }
 
@@ -159,7 +186,7 @@ VkBuffer GraphRun::buffer(BufferHandle buffer) const {
 
 Image* GraphRun::transient_image(ImageHandle image) {
     const uint32_t p = compiled_->physical_of.at(image.index);
-    if (p == invalid_index || compiled_->physical_images[p].imported || !images_[p]) return nullptr;
+    if (!prepared_ || p == invalid_index || compiled_->physical_images[p].imported || !images_[p]) return nullptr;
     return &images_[p];
 }
 
@@ -173,7 +200,7 @@ Image GraphRun::detach_image(ImageHandle image) {
 
 Buffer* GraphRun::transient_buffer(BufferHandle buffer) {
     const uint32_t p = compiled_->physical_of.at(buffer.index);
-    if (p == invalid_index || compiled_->physical_buffers[p].imported) return nullptr;
+    if (!prepared_ || p == invalid_index || compiled_->physical_buffers[p].imported) return nullptr;
     return &buffers_[p];
 }
 
@@ -268,32 +295,51 @@ void GraphRun::record_pass(VkCommandBuffer cmd, uint32_t i) {
     if (context_.cmd_end_label) context_.cmd_end_label(cmd);
 }
 
-void GraphRun::record(VkCommandBuffer cmd) {
+Status GraphRun::record(VkCommandBuffer cmd) {
     if (recorded_) throw UsageError("a GraphRun records once; compile and run the graph again");
+    if (Status ready = prepare(); !ready) return ready;
+    return guarded([&] { record_or_throw(cmd); });
+}
+
+void GraphRun::record_or_throw(VkCommandBuffer cmd) {
     recorded_ = true;
     if (queries_) vkCmdResetQueryPool(cmd, queries_, 0, static_cast<uint32_t>(compiled_->passes.size() * 2));
     for (uint32_t i = 0; i < compiled_->passes.size(); ++i) record_pass(cmd, i);
     record_barriers(cmd, compiled_->final_barriers);
 }
 
-void GraphRun::submit_and_wait() {
-    context_.submit_and_wait([this](VkCommandBuffer cmd) { record(cmd); });
+Status GraphRun::submit_and_wait() {
+    if (recorded_) throw UsageError("a GraphRun records once; compile and run the graph again");
+    if (Status ready = prepare(); !ready) return ready;
+    return context_.submit_and_wait([this](VkCommandBuffer cmd) { record_or_throw(cmd); },
+                                    "a render graph");
 }
 
-void GraphRun::submit_and_wait(const Progress& progress) {
+Status GraphRun::submit_and_wait(const Progress& progress) {
     if (recorded_) throw UsageError("a GraphRun records once; compile and run the graph again");
+    if (Status ready = prepare(); !ready) return ready;
+    return guarded([&] { submit_or_throw(progress); });
+}
+
+void GraphRun::submit_or_throw(const Progress& progress) {
     recorded_ = true;
     const uint32_t total = static_cast<uint32_t>(compiled_->passes.size());
     if (queries_)
-        context_.submit_and_wait([&](VkCommandBuffer cmd) { vkCmdResetQueryPool(cmd, queries_, 0, total * 2); });
+        or_throw(context_.submit_and_wait([&](VkCommandBuffer cmd) { vkCmdResetQueryPool(cmd, queries_, 0, total * 2); },
+                                          "a timestamp reset"));
     for (uint32_t i = 0; i < total; ++i) {
-        context_.submit_and_wait([&](VkCommandBuffer cmd) {
-            record_pass(cmd, i);
-            if (i + 1 == total) record_barriers(cmd, compiled_->final_barriers);
-        });
-        if (progress) progress(i + 1, total, compiled_->graph->passes()[compiled_->passes[i].pass].name);
+        const std::string& name = compiled_->graph->passes()[compiled_->passes[i].pass].name;
+        or_throw(context_.submit_and_wait(
+            [&](VkCommandBuffer cmd) {
+                record_pass(cmd, i);
+                if (i + 1 == total) record_barriers(cmd, compiled_->final_barriers);
+            },
+            ("pass '" + name + "'").c_str()));
+        if (progress) progress(i + 1, total, name);
     }
-    if (total == 0) context_.submit_and_wait([&](VkCommandBuffer cmd) { record_barriers(cmd, compiled_->final_barriers); });
+    if (total == 0)
+        or_throw(context_.submit_and_wait([&](VkCommandBuffer cmd) { record_barriers(cmd, compiled_->final_barriers); },
+                                          "a render graph's final barriers"));
 }
 
 std::vector<PassTiming> GraphRun::timings() const {
@@ -312,9 +358,9 @@ std::vector<PassTiming> GraphRun::timings() const {
     return out;
 }
 
-std::unique_ptr<GraphRun> run_graph(Context& context, const CompiledGraph& compiled) {
+Result<std::unique_ptr<GraphRun>> run_graph(Context& context, const CompiledGraph& compiled) {
     auto run = std::make_unique<GraphRun>(context, compiled);
-    run->submit_and_wait();
+    if (Status done = run->submit_and_wait(); !done) return done.error();
     return run;
 }
 

@@ -19,6 +19,7 @@
 #include "ibl/bake_cancel.h"
 #include "ibl/baked_environment_finish.h"
 #include "ibl/baked_outputs.h"
+#include "core/guarded.h"
 
 namespace facet {
 
@@ -90,10 +91,10 @@ Outputs run_bake_graph(Context& context, ProgramCache& programs, const Environme
     meta.passes = uint32_t(compiled.passes.size());
     if (cb.progress) cb.progress("running " + std::to_string(compiled.passes.size()) + " passes");
     GraphRun run(context, compiled);
-    run.submit_and_wait([&](uint32_t done, uint32_t total, const std::string& pass) {
+    or_throw(run.submit_and_wait([&](uint32_t done, uint32_t total, const std::string& pass) {
         if (cb.pass_done) cb.pass_done(done, total, pass);
         bake_safe_point(cb.stop, "pass");
-    });
+    }));
     Outputs r;
     r.timings = run.timings();
     r.ranges = read_output_ranges(context, *run.transient_buffer(ranges), checked.size());
@@ -105,7 +106,7 @@ Outputs run_bake_graph(Context& context, ProgramCache& programs, const Environme
     r.lut = take(images.lut);
     r.preview = take(preview);
     if (images.sh9.valid()) {
-        auto bytes = read_buffer(context, *run.transient_buffer(images.sh9));
+        auto bytes = or_throw(read_buffer(context, *run.transient_buffer(images.sh9)));
         r.sh9.resize(bytes.size() / sizeof(float));
         std::memcpy(r.sh9.data(), bytes.data(), r.sh9.size() * sizeof(float));
     }
@@ -217,7 +218,7 @@ Result<BakedEnvironment> bake(Context& context, ProgramCache& programs, const En
     if (r.lut) A::lut(out) = keep(std::move(r.lut), "brdf lut", meta.lut_format);
     A::sh9(out) = std::move(r.sh9);
     A::preview(out) = std::move(r.preview);
-    A::cube_sampler(out) = Sampler(context, VK_FILTER_LINEAR, true, false, "baked cube sampler");
+    A::cube_sampler(out) = or_throw(Sampler::create(context, VK_FILTER_LINEAR, true, false, "baked cube sampler"));
     meta.wall_time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return out;
 }

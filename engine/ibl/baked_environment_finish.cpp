@@ -7,6 +7,7 @@
 #include <facet/gpu/transfer.h>
 #include <facet/graph/graph_run.h>
 #include <facet/shader/program_cache.h>
+#include "core/guarded.h"
 #include "ibl/baked_outputs.h"
 
 namespace facet {
@@ -58,7 +59,7 @@ Result<BufferHandle> add_output_range_passes(RenderGraph& graph, ProgramCache& p
 }
 
 std::vector<OutputRange> read_output_ranges(Context& context, const Buffer& ranges, size_t count) {
-    const std::vector<std::byte> bytes = read_buffer(context, ranges);
+    const std::vector<std::byte> bytes = or_throw(read_buffer(context, ranges));
     std::vector<OutputRange> out(count);
     for (size_t i = 0; i < count && (2 * i + 2) * sizeof(uint32_t) <= bytes.size(); ++i) {
         uint32_t peak_bits, bad;
@@ -73,10 +74,10 @@ std::vector<OutputRange> read_output_ranges(Context& context, const Buffer& rang
 Image convert_to_half(Context& context, const Image& rgba32f, VkImageLayout layout, const std::string& name) {
     ImageDesc desc = rgba32f.desc();
     desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-    Image half(context, desc,
-               VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, name);
+    Image half = or_throw(Image::create(
+        context, desc, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, name));
     const VkImageSubresourceRange all = whole_range(desc);
-    context.submit_and_wait([&](VkCommandBuffer cmd) {
+    or_throw(context.submit_and_wait([&](VkCommandBuffer cmd) {
         // The graph's run has completed (its fence was waited on); its writes were made
         // available by the final barriers, so the blit's reads wait on those.
         image_barrier(cmd, rgba32f.handle(), all, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
@@ -99,7 +100,7 @@ Image convert_to_half(Context& context, const Image& rgba32f, VkImageLayout layo
         image_barrier(cmd, half.handle(), all, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, kBakedLayout,
                       VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                       VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-    }, "converting a baked output to RGBA16F");
+    }, "converting a baked output to RGBA16F"));
     return half;
 }
 

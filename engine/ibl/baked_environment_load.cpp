@@ -13,6 +13,7 @@
 #include <facet/io/ktx2.h>
 #include "ibl/baked_outputs.h"
 #include "io/json_reader.h"
+#include "core/guarded.h"
 
 namespace facet {
 
@@ -286,7 +287,7 @@ Result<BakedEnvironment> load_dir(Context& context, const std::string& dir, cons
             const Reader r{p, "passes[]."};
             meta.timings.push_back({r.text("name"), r.number("gpu_time_ms")});
         }
-    A::cube_sampler(out) = Sampler(context, VK_FILTER_LINEAR, true, false, "baked cube sampler");
+    A::cube_sampler(out) = or_throw(Sampler::create(context, VK_FILTER_LINEAR, true, false, "baked cube sampler"));
     return out;
 }
 

@@ -211,9 +211,10 @@ Status BakedEnvironment::stage(OutputSet& outputs, const std::string& dir, const
     if (!options.previews) {
         remove_old("environment.png", no_previews);
     } else if (preview_) {
-        const auto bytes = read_image(context, preview_, 0, 0, kBakedLayout);
-        std::vector<uint8_t> rgba8(bytes.size());
-        std::memcpy(rgba8.data(), bytes.data(), bytes.size());
+        auto bytes = read_image(context, preview_, 0, 0, kBakedLayout);
+        if (!bytes) return bytes.error();
+        std::vector<uint8_t> rgba8(bytes->size());
+        std::memcpy(rgba8.data(), bytes->data(), bytes->size());
         if (Status s = write_ldr_image(staged("environment.png"), e.width, e.height, rgba8); !s) return s;
     }
     auto ktx2 = [&](const char* name, const Image* image, const char* why_absent) -> Status {

@@ -7,6 +7,7 @@
 #include <facet/gpu/context.h>
 #include <facet/gpu/transfer.h>
 #include <facet/io/ktx2.h>
+#include "core/guarded.h"
 
 namespace facet {
 
@@ -46,10 +47,11 @@ Levels read_levels(Context& context, const Image& image, VkImageLayout layout) {
     const std::vector<VkDeviceSize> sizes = level_sizes(d);
     VkDeviceSize total = 0;
     for (VkDeviceSize s : sizes) total += s;
-    Buffer staging(context, total, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::readback, "baked image readback");
+    Buffer staging = or_throw(
+        Buffer::create(context, total, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::readback, "baked image readback"));
     const VkImageSubresourceRange all = whole_range(d);
     const auto regions = level_regions(d, sizes);
-    context.submit_and_wait([&](VkCommandBuffer cmd) {
+    or_throw(context.submit_and_wait([&](VkCommandBuffer cmd) {
         image_barrier(cmd, image.handle(), all, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                       VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
                       VK_ACCESS_2_TRANSFER_READ_BIT);
@@ -60,8 +62,8 @@ Levels read_levels(Context& context, const Image& image, VkImageLayout layout) {
                       VK_ACCESS_2_NONE);
         memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                        VK_ACCESS_2_HOST_READ_BIT);
-    }, "reading a baked image back");
-    staging.invalidate();
+    }, "reading a baked image back"));
+    or_throw(staging.invalidate());
     Levels levels;
     const auto* bytes = static_cast<const std::byte*>(staging.mapped());
     for (uint32_t m = 0; m < d.mip_levels; ++m)
@@ -70,8 +72,8 @@ Levels read_levels(Context& context, const Image& image, VkImageLayout layout) {
 }
 
 Image make_baked_image(Context& context, const ImageDesc& desc, const Levels& levels, const std::string& name) {
-    Image image(context, desc,
-                VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, name);
+    Image image = or_throw(Image::create(
+        context, desc, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, name));
     const std::vector<VkDeviceSize> sizes = level_sizes(desc);
     VkDeviceSize total = 0;
     for (uint32_t m = 0; m < desc.mip_levels; ++m) {
@@ -79,14 +81,15 @@ Image make_baked_image(Context& context, const ImageDesc& desc, const Levels& le
             throw UsageError("make_baked_image: level " + std::to_string(m) + " of " + name + " has the wrong size");
         total += sizes[m];
     }
-    Buffer staging(context, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::upload, "baked image upload");
+    Buffer staging = or_throw(
+        Buffer::create(context, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::upload, "baked image upload"));
     const auto regions = level_regions(desc, sizes);
     auto* bytes = static_cast<std::byte*>(staging.mapped());
     for (uint32_t m = 0; m < desc.mip_levels; ++m)
         std::memcpy(bytes + regions[m].bufferOffset, levels[m].data(), sizes[m]);
-    staging.flush();
+    or_throw(staging.flush());
     const VkImageSubresourceRange all = whole_range(desc);
-    context.submit_and_wait([&](VkCommandBuffer cmd) {
+    or_throw(context.submit_and_wait([&](VkCommandBuffer cmd) {
         image_barrier(cmd, image.handle(), all, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                       VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COPY_BIT,
                       VK_ACCESS_2_TRANSFER_WRITE_BIT);
@@ -95,7 +98,7 @@ Image make_baked_image(Context& context, const ImageDesc& desc, const Levels& le
         image_barrier(cmd, image.handle(), all, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, kBakedLayout,
                       VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                       VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-    }, "uploading a baked image");
+    }, "uploading a baked image"));
     return image;
 }
 

@@ -60,12 +60,13 @@ Status materialize_environment(Context& context, ProgramCache& programs, Environ
                               VK_ACCESS_2_TRANSFER_READ_BIT});
     CompiledGraph compiled = graph.compile();
     GraphRun run(context, compiled);
-    run.submit_and_wait();
+    if (Status done = run.submit_and_wait(); !done) return done;
     auto bytes = read_image(context, *run.transient_image(*sky), 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    if (!bytes) return bytes.error();
     source.image.width = source.width;
     source.image.height = source.height;
-    source.image.rgba.resize(bytes.size() / sizeof(float));
-    std::memcpy(source.image.rgba.data(), bytes.data(), source.image.rgba.size() * sizeof(float));
+    source.image.rgba.resize(bytes->size() / sizeof(float));
+    std::memcpy(source.image.rgba.data(), bytes->data(), source.image.rgba.size() * sizeof(float));
     source.image.content_hash = source.content_hash;
     source.sky.reset();
     return Ok{};
@@ -103,11 +104,8 @@ Status check_ibl_fits(const Context& context, const EnvironmentSource& source, c
     return Ok{};
 }
 
-IblBake::IblBake(Context& context, ProgramCache& programs)
-    : context_(context),
-      programs_(programs),
-      equirect_sampler_(std::make_unique<Sampler>(context, VK_FILTER_LINEAR, false, true, "equirect sampler")),
-      cube_sampler_(std::make_unique<Sampler>(context, VK_FILTER_LINEAR, true, false, "cube sampler")) {}
+// The samplers are made by the first add_passes, which can return their failure.
+IblBake::IblBake(Context& context, ProgramCache& programs) : context_(context), programs_(programs) {}
 
 IblBake::~IblBake() = default;
 
@@ -133,10 +131,12 @@ Result<Uploaded> add_environment(RenderGraph& graph, Context& context, ProgramCa
         out.equirect = *sky;
     } else {
         const std::vector<float>& texels = source.image.rgba;
-        staging = std::make_unique<Buffer>(context, texels.size() * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                           MemoryUsage::upload, prefix + "environment upload");
+        auto made = Buffer::create(context, texels.size() * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                   MemoryUsage::upload, prefix + "environment upload");
+        if (!made) return made.error();
+        staging = std::make_unique<Buffer>(std::move(*made));
         std::memcpy(staging->mapped(), texels.data(), texels.size() * sizeof(float));
-        staging->flush();
+        if (Status flushed = staging->flush(); !flushed) return flushed.error();
         auto staged = graph.import_buffer(
             prefix + "environment texels",
             {staging->handle(), staging->size(),
@@ -173,6 +173,14 @@ Result<ImageHandle> target_or_new(RenderGraph& graph, ImageHandle target, const 
 Result<IblImages> IblBake::add_passes(RenderGraph& graph, const EnvironmentSource& source, const IblSettings& s,
                                       const SpecularSplit& split, const IblTargets& targets) {
     if (Status fits = check_ibl_fits(context_, source, s, split.whole && split.level > 0); !fits) return fits.error();
+    if (!cube_sampler_) {
+        auto equirect = Sampler::create(context_, VK_FILTER_LINEAR, false, true, "equirect sampler");
+        if (!equirect) return equirect.error();
+        auto cube = Sampler::create(context_, VK_FILTER_LINEAR, true, false, "cube sampler");
+        if (!cube) return cube.error();
+        equirect_sampler_ = std::make_unique<Sampler>(std::move(*equirect));
+        cube_sampler_ = std::make_unique<Sampler>(std::move(*cube));
+    }
     IblImages out;
     auto cube_target = target_or_new(graph, targets.cube, "environment cube",
                                      environment_cube_desc(s.cube_size, full_mip_count(s.cube_size)));

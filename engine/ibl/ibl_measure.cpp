@@ -59,12 +59,13 @@ Result<Baked> IblMeasure::bake(const EnvironmentSource& env, IblSettings setting
         // timestamps undercount compute passes, so they cannot rank methods.
         double ms = 0;
         auto last = std::chrono::steady_clock::now();
-        run.submit_and_wait([&](uint32_t, uint32_t, const std::string& pass) {
+        Status done = run.submit_and_wait([&](uint32_t, uint32_t, const std::string& pass) {
             const auto now = std::chrono::steady_clock::now();
             if (!shared_pass(pass)) ms += std::chrono::duration<double, std::milli>(now - last).count();
             last = now;
             bake_safe_point(stop, "pass");
         });
+        if (!done) return done.error();
         times.push_back(ms);
         if (r + 1 < runs_) continue;
         const Image& image = *run.transient_image(result);
@@ -73,8 +74,9 @@ Result<Baked> IblMeasure::bake(const EnvironmentSource& env, IblSettings setting
         for (uint32_t m = 0; m < out.levels; ++m)
             for (uint32_t f = 0; f < image.desc().array_layers; ++f) {
                 auto bytes = read_image(context_, image, m, f, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-                std::vector<float> v(bytes.size() / 4);
-                std::memcpy(v.data(), bytes.data(), v.size() * 4);
+                if (!bytes) return bytes.error();
+                std::vector<float> v(bytes->size() / 4);
+                std::memcpy(v.data(), bytes->data(), v.size() * 4);
                 out.faces.push_back(std::move(v));
             }
     }

@@ -12,6 +12,9 @@
 
 #include <facet/gpu/resources.h>
 #include "render/light_data.h"
+#include <facet/ibl/light_extraction.h>
+#include <facet/scene/scene.h>
+#include "core/guarded.h"
 
 namespace facet::forward {
 
@@ -47,10 +50,10 @@ static_assert(offsetof(SkyConstants, lod) == 64 && offsetof(SkyConstants, intens
 inline void write_lights(Context& context, Buffer& buffer, const std::vector<LightData>& lights, const char* name) {
     const VkDeviceSize bytes = std::max<size_t>(1, lights.size()) * sizeof(LightData);
     if (!buffer || buffer.size() < bytes)
-        buffer = Buffer(context, std::max<VkDeviceSize>(bytes, buffer.size() * 2), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                        MemoryUsage::upload, name);
+        buffer = or_throw(Buffer::create(context, std::max<VkDeviceSize>(bytes, buffer.size() * 2),
+                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::upload, name));
     if (!lights.empty()) std::memcpy(buffer.mapped(), lights.data(), lights.size() * sizeof(LightData));
-    buffer.flush();
+    or_throw(buffer.flush());
 }
 
 }  // namespace facet::forward

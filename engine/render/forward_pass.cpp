@@ -13,6 +13,7 @@
 #include <facet/render/gpu_scene.h>
 #include <facet/shader/program_cache.h>
 #include "render/forward_data.h"
+#include "core/guarded.h"
 
 namespace facet {
 using namespace forward;
@@ -28,23 +29,30 @@ VkSamplerCreateInfo clamped_linear() {
 
 }  // namespace
 
+Result<std::unique_ptr<ForwardRenderer>> ForwardRenderer::create(Context& context, ProgramCache& programs,
+                                                                 uint32_t frames_in_flight) {
+    return guarded([&]() -> Result<std::unique_ptr<ForwardRenderer>> {
+        return std::unique_ptr<ForwardRenderer>(new ForwardRenderer(context, programs, frames_in_flight));
+    });
+}
+
 ForwardRenderer::ForwardRenderer(Context& context, ProgramCache& programs, uint32_t frames_in_flight)
     : context_(context),
       programs_(programs),
-      nearest_(context, VK_FILTER_NEAREST, false, false, "nearest sampler"),
-      lut_sampler_(context, clamped_linear(), "brdf lut sampler") {
+      nearest_(or_throw(Sampler::create(context, VK_FILTER_NEAREST, false, false, "nearest sampler"))),
+      lut_sampler_(or_throw(Sampler::create(context, clamped_linear(), "brdf lut sampler"))) {
     if (frames_in_flight == 0) throw UsageError("ForwardRenderer: frames_in_flight must be at least 1");
     slots_.resize(frames_in_flight);
     for (uint32_t f = 0; f < frames_in_flight; ++f) {
         const std::string n = " (frame slot " + std::to_string(f) + ")";
         Slot& s = slots_[f];
-        s.frame = Buffer(context, sizeof(FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUsage::upload,
-                         "frame constants" + n);
+        s.frame = or_throw(Buffer::create(context, sizeof(FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                          MemoryUsage::upload, "frame constants" + n));
         // Room for a typical frame's lights up front, so that steady frames never grow them.
-        s.lights = Buffer(context, 16 * sizeof(LightData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::upload,
-                          "frame lights" + n);
-        s.sky_disks = Buffer(context, 8 * sizeof(LightData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                             MemoryUsage::upload, "skybox disks" + n);
+        s.lights = or_throw(Buffer::create(context, 16 * sizeof(LightData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                           MemoryUsage::upload, "frame lights" + n));
+        s.sky_disks = or_throw(Buffer::create(context, 8 * sizeof(LightData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                              MemoryUsage::upload, "skybox disks" + n));
     }
 }
 
@@ -174,7 +182,7 @@ ForwardOutputs ForwardRenderer::add_draw_pass(RenderGraph& graph, const std::str
         clear_depth = targets.clear_depth, store_depth = targets.store_depth](PassContext& pc) {
         Slot& slot = slots_[frame];
         std::memcpy(slot.frame.mapped(), &data, sizeof data);
-        slot.frame.flush();
+        or_throw(slot.frame.flush());
         write_lights(context_, slot.lights, lights, "frame lights");
         const VkDeviceSize lights_bytes = std::max<size_t>(1, lights.size()) * sizeof(LightData);
 

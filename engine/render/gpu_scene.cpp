@@ -8,6 +8,7 @@
 #include <facet/core/result.h>
 #include <facet/gpu/context.h>
 #include <facet/gpu/transfer.h>
+#include "core/guarded.h"
 
 namespace facet {
 namespace {
@@ -19,9 +20,9 @@ std::span<const std::byte> bytes_of(const std::vector<T>& v) {
 
 Buffer make_buffer(Context& context, std::span<const std::byte> data, VkBufferUsageFlags usage, const char* name) {
     // Never zero-sized: a scene without lights or textures still binds every buffer.
-    Buffer buffer(context, std::max<VkDeviceSize>(data.size(), 64), usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                  MemoryUsage::gpu_only, name);
-    if (!data.empty()) upload_buffer(context, buffer, data);
+    Buffer buffer = or_throw(Buffer::create(context, std::max<VkDeviceSize>(data.size(), 64),
+                                            usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::gpu_only, name));
+    if (!data.empty()) or_throw(upload_buffer(context, buffer, data));
     return buffer;
 }
 
@@ -55,13 +56,14 @@ Image upload_texture(Context& context, const TextureImage& t, bool srgb) {
     desc.width = t.width;
     desc.height = t.height;
     desc.mip_levels = std::bit_width(std::max(t.width, t.height));
-    Image image(context, desc,
-                VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                t.name + (srgb ? " (sRGB)" : " (linear)"));
-    Buffer staging(context, t.rgba.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::upload, "texture staging");
+    Image image = or_throw(Image::create(
+        context, desc, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+        t.name + (srgb ? " (sRGB)" : " (linear)")));
+    Buffer staging = or_throw(
+        Buffer::create(context, t.rgba.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::upload, "texture staging"));
     std::memcpy(staging.mapped(), t.rgba.data(), t.rgba.size());
-    staging.flush();
-    context.submit_and_wait([&](VkCommandBuffer cmd) {
+    or_throw(staging.flush());
+    or_throw(context.submit_and_wait([&](VkCommandBuffer cmd) {
         VkImage img = image.handle();
         image_barrier(cmd, img, mips(0, desc.mip_levels), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                       VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
@@ -91,7 +93,7 @@ Image upload_texture(Context& context, const TextureImage& t, bool srgb) {
                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                       VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                       VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-    });
+    }, "a texture upload"));
     return image;
 }
 
@@ -100,11 +102,11 @@ Image solid_image(Context& context, VkFormat format, std::array<uint8_t, 4> rgba
     desc.format = format;
     desc.array_layers = layers;
     desc.cube = layers == 6;
-    Image image(context, desc, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, name);
+    Image image = or_throw(Image::create(context, desc, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, name));
     const auto data = std::as_bytes(std::span<const uint8_t>(rgba));
     for (uint32_t layer = 0; layer < layers; ++layer)
-        upload_image(context, image, 0, layer, data, VK_IMAGE_LAYOUT_UNDEFINED,
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        or_throw(upload_image(context, image, 0, layer, data, VK_IMAGE_LAYOUT_UNDEFINED,
+                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
     return image;
 }
 
@@ -119,15 +121,21 @@ std::vector<GpuMaterial> gpu_materials(const std::vector<Material>& materials) {
 
 }  // namespace
 
-void GpuScene::update_materials(const std::vector<Material>& materials) {
+Status GpuScene::update_materials(const std::vector<Material>& materials) {
     if (materials.size() != scene_.materials.size()) throw UsageError("update_materials: the material count changed");
-    upload_buffer(context_, materials_, bytes_of(gpu_materials(materials)));
+    return upload_buffer(context_, materials_, bytes_of(gpu_materials(materials)));
+}
+
+Result<std::unique_ptr<GpuScene>> GpuScene::create(Context& context, const Scene& scene) {
+    return guarded([&]() -> Result<std::unique_ptr<GpuScene>> {
+        return std::unique_ptr<GpuScene>(new GpuScene(context, scene));
+    });
 }
 
 GpuScene::GpuScene(Context& context, const Scene& scene)
     : context_(context),
       scene_(scene),
-      default_sampler_(context, sampler_info({}), "default texture sampler") {
+      default_sampler_(or_throw(Sampler::create(context, sampler_info({}), "default texture sampler"))) {
     vertices_ = make_buffer(context, bytes_of(scene.vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "scene vertices");
     indices_ = make_buffer(context, bytes_of(scene.indices), VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "scene indices");
     std::vector<GpuInstance> instances;
@@ -145,7 +153,8 @@ GpuScene::GpuScene(Context& context, const Scene& scene)
     black_2d_view_ = black_2d_.view();
     black_cube_view_ = black_cube_.view();
     for (size_t i = 0; i < scene.samplers.size(); ++i)
-        samplers_.emplace_back(context, sampler_info(scene.samplers[i]), "gltf sampler " + std::to_string(i));
+        samplers_.push_back(
+            or_throw(Sampler::create(context, sampler_info(scene.samplers[i]), "gltf sampler " + std::to_string(i))));
 
     for (const Material& m : scene.materials) {
         const TextureRef refs[] = {m.base_color_texture, m.metallic_roughness_texture, m.normal_texture,

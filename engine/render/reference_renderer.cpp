@@ -12,6 +12,7 @@
 #include "render/environment_distribution.h"
 #include "render/light_data.h"
 #include <facet/shader/program_cache.h>
+#include "core/guarded.h"
 
 namespace facet {
 namespace {
@@ -32,14 +33,17 @@ const ResourceState storage{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE
                             VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
 
 std::unique_ptr<Buffer> storage_buffer(Context& context, const void* data, size_t bytes, const char* name) {
-    auto buffer = std::make_unique<Buffer>(context, std::max<size_t>(bytes, 16), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                                           VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::gpu_only, name);
-    if (bytes) upload_buffer(context, *buffer, std::as_bytes(std::span(static_cast<const std::byte*>(data), bytes)));
+    auto buffer = std::make_unique<Buffer>(or_throw(Buffer::create(context, std::max<size_t>(bytes, 16),
+                                                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                                                       VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                                                   MemoryUsage::gpu_only, name)));
+    if (bytes)
+        or_throw(upload_buffer(context, *buffer, std::as_bytes(std::span(static_cast<const std::byte*>(data), bytes))));
     return buffer;
 }
 
 std::vector<float> read_floats(Context& context, const Image& image) {
-    auto bytes = read_image(context, image, 0, 0, VK_IMAGE_LAYOUT_GENERAL);
+    auto bytes = or_throw(read_image(context, image, 0, 0, VK_IMAGE_LAYOUT_GENERAL));
     std::vector<float> values(bytes.size() / sizeof(float));
     std::memcpy(values.data(), bytes.data(), values.size() * sizeof(float));
     return values;
@@ -47,13 +51,13 @@ std::vector<float> read_floats(Context& context, const Image& image) {
 
 }  // namespace
 
-ReferenceRenderer::ReferenceRenderer(Context& context, ProgramCache& programs)
-    : context_(context), programs_(programs), nearest_(context, VK_FILTER_NEAREST, false, false, "reference nearest") {}
+// Makes nothing on the device: accumulate makes the sampler, and returns its failure.
+ReferenceRenderer::ReferenceRenderer(Context& context, ProgramCache& programs) : context_(context), programs_(programs) {}
 
 ReferenceRenderer::~ReferenceRenderer() = default;
 
-void ReferenceRenderer::set_environment(std::span<const float> rgba, uint32_t width, uint32_t height,
-                                        float intensity) {
+Status ReferenceRenderer::set_environment(std::span<const float> rgba, uint32_t width, uint32_t height,
+                                          float intensity) try {
     const EnvironmentDistribution d = build_environment_distribution(rgba, width, height);
     radiance_ = storage_buffer(context_, rgba.data(), rgba.size_bytes(), "reference environment radiance");
     distribution_ = storage_buffer(context_, d.values.data(), d.values.size() * sizeof(float),
@@ -61,10 +65,13 @@ void ReferenceRenderer::set_environment(std::span<const float> rgba, uint32_t wi
     env_width_ = width;
     env_height_ = height;
     env_intensity_ = intensity;
+    return Ok{};
+} catch (const VulkanError& e) {
+    return Error{e.what(), e.result()};
 }
 
 Result<ReferenceStats> ReferenceRenderer::accumulate(const ReferenceSurface& surface, const FrameSettings& frame,
-                                                     const ReferenceSettings& settings, const Progress& progress) {
+                                                     const ReferenceSettings& settings, const Progress& progress) try {
     if (!surface.normal || !surface.position || !surface.basecolor || !surface.metallic || !surface.roughness ||
         !surface.f0 || !surface.emissive)
         return Error{"reference: every surface view is needed"};
@@ -75,6 +82,7 @@ Result<ReferenceStats> ReferenceRenderer::accumulate(const ReferenceSurface& sur
 
     std::vector<LightData> lights;
     for (const Light& l : frame.lights) lights.push_back(light_data(l));
+    if (!nearest_) nearest_ = or_throw(Sampler::create(context_, VK_FILTER_NEAREST, false, false, "reference nearest"));
     lights_ = storage_buffer(context_, lights.data(), lights.size() * sizeof(LightData), "reference lights");
     if (!radiance_) {
         const float zero[4] = {};
@@ -86,9 +94,9 @@ Result<ReferenceStats> ReferenceRenderer::accumulate(const ReferenceSurface& sur
     desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
     const VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
                                     VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-    accumulation_ = std::make_unique<Image>(context_, desc, usage, "reference accumulation");
-    moments_ = std::make_unique<Image>(context_, desc, usage, "reference moments");
-    context_.submit_and_wait([&](VkCommandBuffer cmd) {
+    accumulation_ = std::make_unique<Image>(or_throw(Image::create(context_, desc, usage, "reference accumulation")));
+    moments_ = std::make_unique<Image>(or_throw(Image::create(context_, desc, usage, "reference moments")));
+    or_throw(context_.submit_and_wait([&](VkCommandBuffer cmd) {
         for (Image* image : {accumulation_.get(), moments_.get()}) {
             const VkImageSubresourceRange range = whole_range(image->desc());
             image_barrier(cmd, image->handle(), range, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
@@ -100,7 +108,7 @@ Result<ReferenceStats> ReferenceRenderer::accumulate(const ReferenceSurface& sur
         memory_barrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    });
+    }));
 
     ReferenceStats stats;
     const Image* views[] = {surface.normal, surface.position, surface.basecolor, surface.metallic,
@@ -137,7 +145,7 @@ Result<ReferenceStats> ReferenceRenderer::accumulate(const ReferenceSurface& sur
         });
         CompiledGraph compiled = graph.compile();
         GraphRun run(context_, compiled);
-        run.submit_and_wait();
+        or_throw(run.submit_and_wait());
         stats.samples += count;
 
         // Noise: spread of the batch means per pixel (equal batches only).
@@ -157,6 +165,8 @@ Result<ReferenceStats> ReferenceRenderer::accumulate(const ReferenceSurface& sur
         if (stats.converged) break;
     }
     return stats;
+} catch (const VulkanError& e) {
+    return Error{e.what(), e.result()};
 }
 
 Result<ImageHandle> ReferenceRenderer::add_resolve_pass(RenderGraph& graph, ImageHandle accumulation,

@@ -24,6 +24,7 @@
 #include <facet/scene/gltf_loader.h>
 #include <facet/scene/scene_needs.h>
 #include <facet/shader/program_cache.h>
+#include "core/guarded.h"
 
 namespace facet {
 
@@ -195,13 +196,17 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
         for (const std::string& w : s->warnings) say("warning: " + w);
         s->bake_timings = m.timings;
     }
-    s->gpu_scene = std::make_unique<GpuScene>(context, s->scene);
-    s->renderer = std::make_unique<ForwardRenderer>(context, *s->programs);
+    auto gpu_scene = GpuScene::create(context, s->scene);
+    if (!gpu_scene) return gpu_scene.error();
+    s->gpu_scene = std::move(*gpu_scene);
+    auto renderer = ForwardRenderer::create(context, *s->programs);
+    if (!renderer) return renderer.error();
+    s->renderer = std::move(*renderer);
     s->executor = std::make_unique<GraphExecutor>(context);
     return std::unique_ptr<RenderSession>(new RenderSession(std::move(s)));
 }
 
-Result<RenderedImages> RenderSession::render_frame(bool pass_by_pass) {
+Result<RenderedImages> RenderSession::render_frame(bool pass_by_pass) try {
     State& s = *state_;
     Context& context = *s.context;
     const auto start = std::chrono::steady_clock::now();
@@ -232,13 +237,13 @@ Result<RenderedImages> RenderSession::render_frame(bool pass_by_pass) {
     out.width = s.frame.width;
     out.height = s.frame.height;
     auto read_floats = [&](ImageHandle h) {
-        auto bytes = read_image(context, *run.transient_image(h), 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        auto bytes = or_throw(read_image(context, *run.transient_image(h), 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL));
         std::vector<float> values(bytes.size() / sizeof(float));
         std::memcpy(values.data(), bytes.data(), values.size() * sizeof(float));
         return values;
     };
     out.hdr = read_floats(images->hdr);
-    auto ldr = read_image(context, *run.transient_image(images->ldr), 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    auto ldr = or_throw(read_image(context, *run.transient_image(images->ldr), 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL));
     out.ldr.resize(ldr.size());
     std::memcpy(out.ldr.data(), ldr.data(), ldr.size());
     for (auto& [view, handle] : images->views) out.views.push_back({view, read_floats(handle)});
@@ -246,6 +251,8 @@ Result<RenderedImages> RenderSession::render_frame(bool pass_by_pass) {
     out.pass_wall = std::move(pass_wall);
     out.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return out;
+} catch (const VulkanError& e) {  // a readback's failure (or_throw above)
+    return Error{e.what(), e.result()};
 }
 
 }  // namespace facet

@@ -8,6 +8,7 @@
 #include <facet/gpu/transfer.h>
 #include <facet/render/gpu_scene.h>
 #include "render/render_session_state.h"
+#include "core/guarded.h"
 
 namespace facet {
 
@@ -19,7 +20,7 @@ std::optional<IblInputs> import_ibl(RenderSession::State& s, RenderGraph& graph)
 }
 
 std::vector<float> read_floats(Context& context, const Image& image, VkImageLayout layout) {
-    auto bytes = read_image(context, image, 0, 0, layout);
+    auto bytes = or_throw(read_image(context, image, 0, 0, layout));
     std::vector<float> values(bytes.size() / sizeof(float));
     std::memcpy(values.data(), bytes.data(), values.size() * sizeof(float));
     return values;
@@ -40,7 +41,7 @@ const std::vector<std::string>& RenderSession::warnings() const { return state_-
 
 Result<size_t> RenderSession::reload_shaders() { return state_->programs->reload(); }
 
-void RenderSession::override_materials(const std::optional<MaterialFactors>& factors) {
+Status RenderSession::override_materials(const std::optional<MaterialFactors>& factors) {
     State& s = *state_;
     if (s.materials.empty()) s.materials = s.scene.materials;
     const int had_textures = s.textures_on;
@@ -60,13 +61,16 @@ void RenderSession::override_materials(const std::optional<MaterialFactors>& fac
         }
     // Factors alone: new buffer contents. A texture switched on or off: other shader
     // variants and descriptors, so the GPU scene is built again.
-    if (had_textures != s.textures_on) s.gpu_scene = std::make_unique<GpuScene>(*s.context, s.scene);
-    else s.gpu_scene->update_materials(s.scene.materials);
+    if (had_textures == s.textures_on) return s.gpu_scene->update_materials(s.scene.materials);
+    auto rebuilt = GpuScene::create(*s.context, s.scene);
+    if (!rebuilt) return rebuilt.error();
+    s.gpu_scene = std::move(*rebuilt);
+    return Ok{};
 }
 
 Result<RenderedImages> RenderSession::render_reference(const ReferenceSettings& settings,
                                                        const ReferenceRenderer::Progress& progress,
-                                                       ReferenceStats* stats_out) {
+                                                       ReferenceStats* stats_out) try {
     State& s = *state_;
     Context& context = *s.context;
     const auto start = std::chrono::steady_clock::now();
@@ -79,7 +83,7 @@ Result<RenderedImages> RenderSession::render_reference(const ReferenceSettings& 
             if (texels.empty())
                 texels = read_floats(context, s.baked->environment(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
             const BakeMetadata& m = s.baked->metadata();
-            s.reference->set_environment(texels, m.width, m.height, s.job.ibl_intensity);
+            or_throw(s.reference->set_environment(texels, m.width, m.height, s.job.ibl_intensity));
         }
     }
     // The surface each pixel sees, one sample per pixel.
@@ -98,7 +102,7 @@ Result<RenderedImages> RenderSession::render_reference(const ReferenceSettings& 
     for (auto& [view, handle] : surface_images->views) surface_graph.export_image(handle, sampled);
     CompiledGraph surface_compiled = surface_graph.compile();
     GraphRun surface_run(context, surface_compiled);
-    surface_run.submit_and_wait();
+    if (Status done = surface_run.submit_and_wait(); !done) return done.error();
     auto view_image = [&](View v) -> const Image* {
         for (auto& [view, handle] : surface_images->views)
             if (view == v) return surface_run.transient_image(handle);
@@ -128,7 +132,9 @@ Result<RenderedImages> RenderSession::render_reference(const ReferenceSettings& 
         if (!sky) return sky.error();
         frame = *sky;
     }
-    if (!s.nearest) s.nearest = std::make_unique<Sampler>(context, VK_FILTER_NEAREST, false, false, "display nearest");
+    if (!s.nearest)
+        s.nearest = std::make_unique<Sampler>(
+            or_throw(Sampler::create(context, VK_FILTER_NEAREST, false, false, "display nearest")));
     ImageDesc ldr_desc = hdr_desc;
     ldr_desc.format = VK_FORMAT_R8G8B8A8_UNORM;
     auto ldr = add_tonemap_pass(graph, *s.programs, *s.nearest, frame, graph.create_image("display colour", ldr_desc),
@@ -138,13 +144,13 @@ Result<RenderedImages> RenderSession::render_reference(const ReferenceSettings& 
     graph.export_image(*ldr, readable);
     CompiledGraph compiled = graph.compile();
     GraphRun run(context, compiled);
-    run.submit_and_wait();
+    if (Status done = run.submit_and_wait(); !done) return done.error();
 
     RenderedImages out;
     out.width = s.frame.width;
     out.height = s.frame.height;
     out.hdr = read_floats(context, *run.transient_image(frame), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-    auto ldr_bytes = read_image(context, *run.transient_image(*ldr), 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    auto ldr_bytes = or_throw(read_image(context, *run.transient_image(*ldr), 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL));
     out.ldr.resize(ldr_bytes.size());
     std::memcpy(out.ldr.data(), ldr_bytes.data(), ldr_bytes.size());
     for (View v : s.frame.views)
@@ -155,6 +161,8 @@ Result<RenderedImages> RenderSession::render_reference(const ReferenceSettings& 
     out.timings = run.timings();
     out.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return out;
+} catch (const VulkanError& e) {  // a readback's or an upload's failure (or_throw above)
+    return Error{e.what(), e.result()};
 }
 
 }  // namespace facet

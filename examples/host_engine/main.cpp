@@ -112,10 +112,13 @@ int main(int argc, char** argv) {
 
         // 4. The frame: Facet's passes into the host's images, two frames in flight.
         constexpr uint32_t in_flight = 2;
-        facet::GpuScene gpu_scene(*context, scene);
-        facet::ForwardRenderer renderer(*context, programs, in_flight);
+        const auto gpu_scene_owner = need(facet::GpuScene::create(*context, scene), "scene upload");
+        const facet::GpuScene& gpu_scene = *gpu_scene_owner;
+        const auto renderer_owner = need(facet::ForwardRenderer::create(*context, programs, in_flight), "renderer");
+        facet::ForwardRenderer& renderer = *renderer_owner;
         facet::GraphExecutor executor(*context, in_flight);
-        facet::Sampler nearest(*context, VK_FILTER_NEAREST, false, false, "host tonemap");
+        const facet::Sampler nearest =
+            need(facet::Sampler::create(*context, VK_FILTER_NEAREST, false, false, "host tonemap"), "sampler");
         facet::FrameSettings settings;
         settings.width = args.width;
         settings.height = args.height;

@@ -28,7 +28,7 @@ std::vector<std::vector<float>> texels(Context& context, const Image& image) {
     for (uint32_t m = 0; m < d.mip_levels; ++m) {
         std::vector<float> level;
         for (uint32_t layer = 0; layer < d.array_layers; ++layer) {
-            auto bytes = read_image(context, image, m, layer, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+            auto bytes = test::must(read_image(context, image, m, layer, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
             const size_t n = bytes.size() / (half ? 2 : 4);
             for (size_t i = 0; i < n; ++i) {
                 if (half) {

@@ -27,7 +27,7 @@ std::vector<std::vector<std::byte>> bytes_of(Context& context, const Image& imag
     std::vector<std::vector<std::byte>> out;
     for (uint32_t m = 0; m < image.desc().mip_levels; ++m)
         for (uint32_t layer = 0; layer < image.desc().array_layers; ++layer)
-            out.push_back(read_image(context, image, m, layer, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
+            out.push_back(test::must(read_image(context, image, m, layer, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)));
     return out;
 }
 
@@ -241,8 +241,8 @@ TEST_F(BakedEnvironmentTest, PassesWriteIntoTheCallersImages) {
     lut_desc.width = lut_desc.height = resolved.lut.size;
     ImageDesc spec_desc = baked->specular()->desc();
     spec_desc.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    Image lut(ctx(), lut_desc, usage, "engine's lut");
-    Image specular(ctx(), spec_desc, usage, "engine's specular");
+    Image lut = test::must(Image::create(ctx(), lut_desc, usage, "engine's lut"));
+    Image specular = test::must(Image::create(ctx(), spec_desc, usage, "engine's specular"));
     const ResourceState readable{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
                                  VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
     ShaderCompiler compiler;
@@ -256,7 +256,7 @@ TEST_F(BakedEnvironmentTest, PassesWriteIntoTheCallersImages) {
     ASSERT_TRUE(images) << images.error().message;
     CompiledGraph compiled = graph.compile();
     GraphRun run(ctx(), compiled);
-    run.submit_and_wait();
+    ASSERT_TRUE(run.submit_and_wait());
     EXPECT_TRUE(bytes_of(ctx(), lut) == bytes_of(ctx(), *baked->lut())) << "LUT";
     EXPECT_TRUE(bytes_of(ctx(), specular) == bytes_of(ctx(), *baked->specular())) << "specular";
 

@@ -32,8 +32,8 @@ protected:
         g.export_image(*out, {VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                               VK_ACCESS_2_TRANSFER_READ_BIT});
         CompiledGraph c = g.compile();
-        auto run = run_graph(ctx(), c);
-        auto bytes = read_image(ctx(), *run->transient_image(lut), 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        auto run = test::must(run_graph(ctx(), c));
+        auto bytes = test::must(read_image(ctx(), *run->transient_image(lut), 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL));
         std::vector<float> t(bytes.size() / 4);
         std::memcpy(t.data(), bytes.data(), bytes.size());
         return t;

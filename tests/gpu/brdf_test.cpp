@@ -60,13 +60,13 @@ std::vector<BrdfOutput> evaluate(Context& context, const std::vector<BrdfInput>&
         return {};
     }
     Pipeline pipeline = std::move(built).value();
-    Buffer in(context, inputs.size() * sizeof(BrdfInput), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::upload,
-              "brdf inputs");
-    Buffer out(context, inputs.size() * sizeof(BrdfOutput), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-               MemoryUsage::readback, "brdf outputs");
+    Buffer in = test::must(Buffer::create(context, inputs.size() * sizeof(BrdfInput), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                          MemoryUsage::upload, "brdf inputs"));
+    Buffer out = test::must(Buffer::create(context, inputs.size() * sizeof(BrdfOutput),
+                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::readback, "brdf outputs"));
     std::memcpy(in.mapped(), inputs.data(), inputs.size() * sizeof(BrdfInput));
-    in.flush();
-    context.submit_and_wait([&](VkCommandBuffer cmd) {
+    test::must(in.flush());
+    test::must(context.submit_and_wait([&](VkCommandBuffer cmd) {
         pipeline.bind(cmd);
         const DescriptorWrite writes[] = {DescriptorWrite::storage_buffer(in.handle()),
                                           DescriptorWrite::storage_buffer(out.handle())};
@@ -74,8 +74,8 @@ std::vector<BrdfOutput> evaluate(Context& context, const std::vector<BrdfInput>&
         vkCmdDispatch(cmd, group_count(static_cast<uint32_t>(inputs.size()), pipeline.workgroup_size()[0]), 1, 1);
         memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
-    });
-    out.invalidate();
+    }));
+    test::must(out.invalidate());
     std::vector<BrdfOutput> result(inputs.size());
     std::memcpy(result.data(), out.mapped(), result.size() * sizeof(BrdfOutput));
     return result;

@@ -37,9 +37,11 @@ struct HostTargets {
         desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
         desc.width = w;
         desc.height = h;
-        color = Image(context, desc, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, "host colour");
+        color = test::must(Image::create(context, desc,
+                                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                         "host colour"));
         desc.format = VK_FORMAT_D32_SFLOAT;
-        depth = Image(context, desc, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, "host depth");
+        depth = test::must(Image::create(context, desc, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, "host depth"));
     }
     ForwardTargets import(RenderGraph& graph) const {
         ForwardTargets t;
@@ -48,7 +50,7 @@ struct HostTargets {
         return t;
     }
     std::vector<float> read(Context& context) const {
-        auto bytes = read_image(context, color, 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        auto bytes = test::must(read_image(context, color, 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL));
         std::vector<uint16_t> halves(bytes.size() / 2);
         std::memcpy(halves.data(), bytes.data(), bytes.size());
         std::vector<float> out(halves.size());
@@ -129,7 +131,9 @@ TEST_F(ForwardTargetsTest, TwoFramesInFlightKeepTheirOwnCameras) {
     const uint32_t w = 40, h = 40;
     auto s = session(w, h);
     ASSERT_TRUE(s);
-    ForwardRenderer renderer(ctx(), s->programs(), 2);
+    auto renderer_owner = ForwardRenderer::create(ctx(), s->programs(), 2);
+    ASSERT_TRUE(renderer_owner) << renderer_owner.error().message;
+    ForwardRenderer& renderer = **renderer_owner;
     GraphExecutor executor(ctx(), 2);
     const CameraView a = s->camera();
     const glm::vec3 target = a.target;
@@ -150,9 +154,9 @@ TEST_F(ForwardTargetsTest, TwoFramesInFlightKeepTheirOwnCameras) {
         ASSERT_TRUE(drawn) << drawn.error().message;
         compiled[f] = graphs[f].compile();
     }
-    ctx().submit_and_wait([&](VkCommandBuffer cmd) {
+    ASSERT_TRUE(ctx().submit_and_wait([&](VkCommandBuffer cmd) {
         for (uint32_t f = 0; f < 2; ++f) ASSERT_TRUE(executor.record(compiled[f], cmd, f));
-    });
+    }));
     for (uint32_t f = 0; f < 2; ++f) EXPECT_EQ(mismatches(together[f].read(ctx()), expected[f]), 0u) << "slot " << f;
 }
 
@@ -182,10 +186,10 @@ TEST_F(ForwardTargetsTest, SteadyViewerFramesAllocateNothing) {
         ASSERT_TRUE(images) << images.error().message;
         graph.export_image(images->ldr, readable);
         CompiledGraph compiled = graph.compile();
-        ctx().submit_and_wait([&](VkCommandBuffer cmd) {
+        ASSERT_TRUE(ctx().submit_and_wait([&](VkCommandBuffer cmd) {
             ASSERT_TRUE(executor.record(compiled, cmd));
             cpu_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-        });
+        }));
         if (frame == 0) settled = ctx().allocator().stats();
     }
     const AllocatorStats steady = ctx().allocator().stats();

@@ -64,7 +64,7 @@ TEST_F(GpuTest, AllocatorSubAllocatesAlignedAndReturnsMemory) {
     req.alignment = 256;
     req.memoryTypeBits = ~0u;
     std::vector<Allocation> allocations;
-    for (int i = 0; i < 8; ++i) allocations.push_back(allocator.allocate(req, MemoryUsage::gpu_only));
+    for (int i = 0; i < 8; ++i) allocations.push_back(test::must(allocator.allocate(req, MemoryUsage::gpu_only)));
     for (size_t i = 0; i < allocations.size(); ++i) {
         EXPECT_EQ(allocations[i].offset % 256, 0u);
         EXPECT_GE(allocations[i].block, 0);
@@ -79,7 +79,7 @@ TEST_F(GpuTest, AllocatorSubAllocatesAlignedAndReturnsMemory) {
     const VkDeviceSize freed_offset = allocations[3].offset;
     VkDeviceMemory freed_memory = allocations[3].memory;
     allocator.free(allocations[3]);
-    Allocation again = allocator.allocate(req, MemoryUsage::gpu_only);
+    Allocation again = test::must(allocator.allocate(req, MemoryUsage::gpu_only));
     EXPECT_EQ(again.memory, freed_memory);
     EXPECT_EQ(again.offset, freed_offset);
     allocations[3] = again;
@@ -87,7 +87,7 @@ TEST_F(GpuTest, AllocatorSubAllocatesAlignedAndReturnsMemory) {
     // Large requests get memory of their own.
     VkMemoryRequirements large = req;
     large.size = Allocator::dedicated_threshold + 4096;
-    Allocation dedicated = allocator.allocate(large, MemoryUsage::gpu_only);
+    Allocation dedicated = test::must(allocator.allocate(large, MemoryUsage::gpu_only));
     EXPECT_EQ(dedicated.block, -1);
     EXPECT_EQ(allocator.stats().dedicated_count, before.dedicated_count + 1);
 
@@ -100,8 +100,10 @@ TEST_F(GpuTest, AllocatorSubAllocatesAlignedAndReturnsMemory) {
 }
 
 TEST_F(GpuTest, HostVisibleAllocationsAreMapped) {
-    Buffer upload(ctx(), 4096, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::upload, "test upload");
-    Buffer readback(ctx(), 4096, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::readback, "test readback");
+    Buffer upload =
+        test::must(Buffer::create(ctx(), 4096, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::upload, "test upload"));
+    Buffer readback = test::must(
+        Buffer::create(ctx(), 4096, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::readback, "test readback"));
     EXPECT_NE(upload.mapped(), nullptr);
     EXPECT_NE(readback.mapped(), nullptr);
 }
@@ -109,12 +111,12 @@ TEST_F(GpuTest, HostVisibleAllocationsAreMapped) {
 TEST_F(GpuTest, BufferRoundTripThroughDeviceMemory) {
     std::vector<uint32_t> data(10000);
     for (uint32_t i = 0; i < data.size(); ++i) data[i] = i * 2654435761u;
-    Buffer buffer(ctx(), data.size() * 4,
-                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-                      VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                  MemoryUsage::gpu_only, "test buffer");
-    upload_buffer(ctx(), buffer, std::as_bytes(std::span(data)));
-    std::vector<std::byte> back = read_buffer(ctx(), buffer);
+    Buffer buffer = test::must(Buffer::create(ctx(), data.size() * 4,
+                                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                                  VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                              MemoryUsage::gpu_only, "test buffer"));
+    test::must(upload_buffer(ctx(), buffer, std::as_bytes(std::span(data))));
+    std::vector<std::byte> back = test::must(read_buffer(ctx(), buffer));
     ASSERT_EQ(back.size(), data.size() * 4);
     EXPECT_EQ(std::memcmp(back.data(), data.data(), back.size()), 0);
 }
@@ -127,17 +129,18 @@ TEST_F(GpuTest, ImageRoundTripPerMipAndLayer) {
     desc.mip_levels = 3;
     desc.array_layers = 6;
     desc.cube = false;
-    Image image(ctx(), desc, VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
-                                 VK_IMAGE_USAGE_SAMPLED_BIT, "test image");
+    Image image = test::must(Image::create(
+        ctx(), desc, VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+        "test image"));
     for (uint32_t layer : {0u, 5u}) {
         for (uint32_t mip = 0; mip < 3; ++mip) {
             const uint32_t n = desc.mip_width(mip) * desc.mip_height(mip) * 4;
             std::vector<float> texels(n);
             for (uint32_t i = 0; i < n; ++i) texels[i] = float(i) + 1000.0f * mip + 0.25f * layer;
-            upload_image(ctx(), image, mip, layer, std::as_bytes(std::span(texels)), VK_IMAGE_LAYOUT_UNDEFINED,
-                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+            test::must(upload_image(ctx(), image, mip, layer, std::as_bytes(std::span(texels)),
+                                    VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
             std::vector<std::byte> back =
-                read_image(ctx(), image, mip, layer, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+                test::must(read_image(ctx(), image, mip, layer, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
             ASSERT_EQ(back.size(), n * 4u);
             EXPECT_EQ(std::memcmp(back.data(), texels.data(), back.size()), 0) << "mip " << mip << " layer " << layer;
         }
@@ -152,12 +155,12 @@ TEST_F(GpuTest, BadUploadSizeIsAUsageError) {
     ImageDesc desc;
     desc.width = 4;
     desc.height = 4;
-    Image image(ctx(), desc, VK_IMAGE_USAGE_TRANSFER_DST_BIT, "test image");
+    Image image = test::must(Image::create(ctx(), desc, VK_IMAGE_USAGE_TRANSFER_DST_BIT, "test image"));
     std::vector<float> too_small(3);
-    EXPECT_THROW(upload_image(ctx(), image, 0, 0, std::as_bytes(std::span(too_small)), VK_IMAGE_LAYOUT_UNDEFINED,
-                              VK_IMAGE_LAYOUT_GENERAL),
+    EXPECT_THROW((void)upload_image(ctx(), image, 0, 0, std::as_bytes(std::span(too_small)),
+                                    VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL),
                  UsageError);
-    EXPECT_THROW(read_image(ctx(), image, 1, 0, VK_IMAGE_LAYOUT_GENERAL), UsageError);
+    EXPECT_THROW((void)read_image(ctx(), image, 1, 0, VK_IMAGE_LAYOUT_GENERAL), UsageError);
 }
 
 }  // namespace
@@ -179,13 +182,14 @@ TEST(GpuValidation, WrongLayoutIsCounted) {
     desc.height = 4;
     std::vector<float> texels(4 * 4 * 4, 1.0f);
     {
-        Image image(context, desc, VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "misused image");
-        upload_image(context, image, 0, 0, std::as_bytes(std::span(texels)), VK_IMAGE_LAYOUT_UNDEFINED,
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        Image image = test::must(
+            Image::create(context, desc, VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, "misused image"));
+        test::must(upload_image(context, image, 0, 0, std::as_bytes(std::span(texels)), VK_IMAGE_LAYOUT_UNDEFINED,
+                                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
         EXPECT_EQ(context.validation_message_count(), 0u);
         testing::internal::CaptureStderr();
-        upload_image(context, image, 0, 0, std::as_bytes(std::span(texels)), VK_IMAGE_LAYOUT_GENERAL,
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        test::must(upload_image(context, image, 0, 0, std::as_bytes(std::span(texels)), VK_IMAGE_LAYOUT_GENERAL,
+                                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
         std::string printed = testing::internal::GetCapturedStderr();
         EXPECT_GT(context.validation_message_count(), 0u);
         EXPECT_NE(printed.find("validation"), std::string::npos) << printed;
@@ -207,15 +211,16 @@ TEST(GpuValidation, MissingBarrierIsASyncHazard) {
     auto created = test::create_context(options);
     ASSERT_TRUE(created) << created.error().message;
     Context& context = *created.value();
-    Buffer a(context, 256, VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::gpu_only,
-             "hazard source");
-    Buffer b(context, 256, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::gpu_only, "hazard destination");
+    Buffer a = test::must(Buffer::create(context, 256, VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                         MemoryUsage::gpu_only, "hazard source"));
+    Buffer b = test::must(
+        Buffer::create(context, 256, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::gpu_only, "hazard destination"));
     testing::internal::CaptureStderr();
-    context.submit_and_wait([&](VkCommandBuffer cmd) {
+    test::must(context.submit_and_wait([&](VkCommandBuffer cmd) {
         vkCmdFillBuffer(cmd, a.handle(), 0, 256, 42);
         VkBufferCopy region{0, 0, 256};
         vkCmdCopyBuffer(cmd, a.handle(), b.handle(), 1, &region);
-    });
+    }));
     std::string printed = testing::internal::GetCapturedStderr();
     EXPECT_GT(context.validation_message_count(), 0u);
     EXPECT_NE(printed.find("SYNC-HAZARD"), std::string::npos) << printed;

@@ -96,7 +96,7 @@ protected:
     std::vector<float> read_rgba32f(GraphRun& run, ImageHandle h, uint32_t mip, VkImageLayout layout) {
         Image* image = run.transient_image(h);
         EXPECT_NE(image, nullptr);
-        auto bytes = read_image(ctx(), *image, mip, 0, layout);
+        auto bytes = test::must(read_image(ctx(), *image, mip, 0, layout));
         std::vector<float> values(bytes.size() / 4);
         std::memcpy(values.data(), bytes.data(), bytes.size());
         return values;
@@ -134,7 +134,7 @@ protected:
     }
 
     ShaderCompiler compiler_;
-    Sampler sampler_{ctx(), VK_FILTER_NEAREST, false, false, "test nearest"};
+    Sampler sampler_ = test::must(Sampler::create(ctx(), VK_FILTER_NEAREST, false, false, "test nearest"));
     Pipeline pattern_, transform_;
 };
 
@@ -143,7 +143,7 @@ TEST_F(GraphGpuTest, ComputeChainMatchesCpu) {
     RenderGraph g;
     auto b = add_pattern_then_transform(g, w, h);
     CompiledGraph compiled = g.compile();
-    auto run = run_graph(ctx(), compiled);
+    auto run = test::must(run_graph(ctx(), compiled));
     auto values = read_rgba32f(*run, b, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
     ASSERT_EQ(values.size(), size_t(w) * h * 4);
     double max_error = 0;
@@ -198,7 +198,7 @@ TEST_F(GraphGpuTest, MipChainPassesReadThePreviousLevel) {
     }
     g.export_image(chain, readable);
     CompiledGraph compiled = g.compile();
-    auto run = run_graph(ctx(), compiled);
+    auto run = test::must(run_graph(ctx(), compiled));
     // The mean of a linear pattern over a block is its value at the block centre.
     for (uint32_t m = 0; m < mips; ++m) {
         auto values = read_rgba32f(*run, chain, m, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
@@ -259,8 +259,8 @@ TEST_F(GraphGpuTest, GraphicsPassClearsAndDrawsATriangle) {
                         });
     g.export_image(target, readable);
     CompiledGraph compiled = g.compile();
-    auto run = run_graph(ctx(), compiled);
-    auto bytes = read_image(ctx(), *run->transient_image(target), 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    auto run = test::must(run_graph(ctx(), compiled));
+    auto bytes = test::must(read_image(ctx(), *run->transient_image(target), 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL));
     ASSERT_EQ(bytes.size(), size_t(w) * h * 4);
     auto pixel = [&](uint32_t x, uint32_t y) {
         const auto* p = reinterpret_cast<const uint8_t*>(bytes.data()) + (size_t(y) * w + x) * 4;
@@ -287,11 +287,11 @@ TEST_F(GraphGpuTest, PerPassSubmissionsReportProgress) {
     CompiledGraph compiled = g.compile();
     GraphRun run(ctx(), compiled);
     std::vector<std::string> reported;
-    run.submit_and_wait([&](uint32_t done, uint32_t total, const std::string& pass) {
+    ASSERT_TRUE(run.submit_and_wait([&](uint32_t done, uint32_t total, const std::string& pass) {
         EXPECT_EQ(total, 2u);
         EXPECT_EQ(done, reported.size() + 1);
         reported.push_back(pass);
-    });
+    }));
     EXPECT_EQ(reported, (std::vector<std::string>{"pattern", "transform"}));
     auto values = read_rgba32f(run, b, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
     EXPECT_EQ(values[(7 * w + 5) * 4 + 0], 2.0f * 5 + 1);
@@ -315,12 +315,12 @@ TEST_F(GraphGpuTest, HostRecordedCommandBuffer) {
     g.export_image(a, readable);
     CompiledGraph compiled = g.compile();
     GraphRun run(ctx(), compiled);
-    ctx().submit_and_wait([&](VkCommandBuffer cmd) { run.record(cmd); });  // the host's buffer
+    test::must(ctx().submit_and_wait([&](VkCommandBuffer cmd) { test::must(run.record(cmd)); }));  // the host's buffer
     auto values = read_rgba32f(run, a, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
     EXPECT_EQ(values[(5 * 16 + 3) * 4 + 0], 3.0f);
     EXPECT_EQ(values[(5 * 16 + 3) * 4 + 1], 5.0f);
     EXPECT_EQ(run.timings().size(), 1u);
-    EXPECT_THROW(run.record(VK_NULL_HANDLE), UsageError);
+    EXPECT_THROW((void)run.record(VK_NULL_HANDLE), UsageError);
 }
 
 // Frames of the same shape in two slots: after each slot's first frame, no allocation and
@@ -384,7 +384,7 @@ TEST_F(GraphGpuTest, ExecutorDetachesAnExportedImage) {
         EXPECT_EQ(ctx().allocator().stats().images_bound, images_before + 1);
     }
     ASSERT_TRUE(kept);
-    auto bytes = read_image(ctx(), kept, 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    auto bytes = test::must(read_image(ctx(), kept, 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL));
     std::vector<float> values(bytes.size() / 4);
     std::memcpy(values.data(), bytes.data(), bytes.size());
     EXPECT_EQ(transform_error(values, w, h), 0.0);

@@ -43,7 +43,8 @@ void main() { v[gl_GlobalInvocationID.x] += 7u; }
     ASSERT_TRUE(fill_built && add_built);
     Pipeline fill_pipeline = std::move(fill_built).value(), add_pipeline = std::move(add_built).value();
     const uint32_t count = 1024;
-    Buffer result(context, count * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::readback, "host test result");
+    Buffer result = test::must(Buffer::create(context, count * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                              MemoryUsage::readback, "host test result"));
 
     RenderGraph g;
     ImportedBuffer imported{result.handle(), count * 4, {},
@@ -64,8 +65,8 @@ void main() { v[gl_GlobalInvocationID.x] += 7u; }
                        dispatch(add_pipeline, before_add));
     CompiledGraph compiled = g.compile();
     ASSERT_EQ(compiled.passes.size(), 2u);
-    auto run = run_graph(context, compiled);
-    result.invalidate();
+    auto run = test::must(run_graph(context, compiled));
+    test::must(result.invalidate());
     const auto* v = static_cast<const uint32_t*>(result.mapped());
     for (uint32_t i = 0; i < count; ++i) ASSERT_EQ(v[i], i * i + 7) << "element " << i;
 }

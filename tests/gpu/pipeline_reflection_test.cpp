@@ -62,9 +62,10 @@ TEST_F(PipelineReflectionTest, DispatchSizedByTheReflectedWorkgroupCoversTheGrid
 
     const GridParams params{37, 23, 3};
     const uint32_t count = params.width * params.height;
-    Buffer grid(ctx(), count * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                MemoryUsage::readback, "reflection grid");
-    ctx().submit_and_wait([&](VkCommandBuffer cmd) {
+    Buffer grid = test::must(Buffer::create(ctx(), count * 4,
+                                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                            MemoryUsage::readback, "reflection grid"));
+    test::must(ctx().submit_and_wait([&](VkCommandBuffer cmd) {
         vkCmdFillBuffer(cmd, grid.handle(), 0, VK_WHOLE_SIZE, 0);
         memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -77,8 +78,8 @@ TEST_F(PipelineReflectionTest, DispatchSizedByTheReflectedWorkgroupCoversTheGrid
         vkCmdDispatch(cmd, group_count(params.width, local[0]), group_count(params.height, local[1]), 1);
         memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
-    });
-    grid.invalidate();
+    }));
+    test::must(grid.invalidate());
     std::vector<uint32_t> values(count);
     std::memcpy(values.data(), grid.mapped(), count * 4);
     uint32_t wrong = 0;
@@ -92,7 +93,7 @@ TEST_F(PipelineReflectionTest, PushingTheWrongNumberOfBytesIsMisuse) {
     ASSERT_NE(pipeline.handle(), VK_NULL_HANDLE);
     const uint32_t too_few[2] = {1, 2};
     const uint32_t too_many[4] = {1, 2, 3, 4};
-    ctx().submit_and_wait([&](VkCommandBuffer cmd) {
+    test::must(ctx().submit_and_wait([&](VkCommandBuffer cmd) {
         pipeline.bind(cmd);
         EXPECT_THROW(pipeline.push_constants(cmd, too_few), UsageError);
         EXPECT_THROW(pipeline.push_constants(cmd, too_many), UsageError);
@@ -106,22 +107,23 @@ TEST_F(PipelineReflectionTest, PushingTheWrongNumberOfBytesIsMisuse) {
             EXPECT_NE(message.find("12"), std::string::npos) << message;
         }
         EXPECT_NO_THROW(pipeline.push_constants(cmd, GridParams{1, 1, 1}));
-    });
+    }));
 }
 
 TEST_F(PipelineReflectionTest, PushingDescriptorsTheShaderDoesNotDeclareIsMisuse) {
     Pipeline pipeline = build(grid_source);
     ASSERT_NE(pipeline.handle(), VK_NULL_HANDLE);
-    Buffer buffer(ctx(), 64, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                  MemoryUsage::upload, "reflection descriptors");
-    ctx().submit_and_wait([&](VkCommandBuffer cmd) {
+    Buffer buffer = test::must(Buffer::create(ctx(), 64,
+                                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                              MemoryUsage::upload, "reflection descriptors"));
+    test::must(ctx().submit_and_wait([&](VkCommandBuffer cmd) {
         pipeline.bind(cmd);
         const DescriptorWrite wrong_type[] = {DescriptorWrite::uniform_buffer(buffer.handle())};
         EXPECT_THROW(pipeline.push_descriptors(cmd, wrong_type), UsageError);
         const DescriptorWrite two[] = {DescriptorWrite::storage_buffer(buffer.handle()),
                                        DescriptorWrite::storage_buffer(buffer.handle())};
         EXPECT_THROW(pipeline.push_descriptors(cmd, two), UsageError);
-    });
+    }));
 }
 
 TEST_F(PipelineReflectionTest, OnlyComputePipelinesHaveAWorkgroupSize) {

@@ -58,7 +58,7 @@ class TonemapTest : public test::GpuTest {};
 TEST_F(TonemapTest, EveryOperatorMatchesItsFormula) {
     ShaderCompiler compiler;
     ProgramCache programs(ctx(), compiler);
-    Sampler nearest(ctx(), VK_FILTER_NEAREST, false, false, "nearest");
+    Sampler nearest = test::must(Sampler::create(ctx(), VK_FILTER_NEAREST, false, false, "nearest"));
     // A ramp from 0 to 20 across x, different per channel and row, so that hue matters.
     const uint32_t w = 64, h = 4;
     std::vector<float> hdr(size_t(w) * h * 4);
@@ -71,9 +71,10 @@ TEST_F(TonemapTest, EveryOperatorMatchesItsFormula) {
             p[2] = t * 0.1f * y;
             p[3] = 1.0f;
         }
-    Buffer staging(ctx(), hdr.size() * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::upload, "ramp");
+    Buffer staging =
+        test::must(Buffer::create(ctx(), hdr.size() * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::upload, "ramp"));
     std::memcpy(staging.mapped(), hdr.data(), hdr.size() * 4);
-    staging.flush();
+    test::must(staging.flush());
     for (Tonemap op : {Tonemap::none, Tonemap::reinhard, Tonemap::exposure, Tonemap::aces, Tonemap::neutral})
         for (float gamma : {0.0f, 2.2f}) {
             const float exposure = 0.75f;
@@ -91,8 +92,8 @@ TEST_F(TonemapTest, EveryOperatorMatchesItsFormula) {
             g.export_image(*ldr, {VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                                   VK_ACCESS_2_TRANSFER_READ_BIT});
             CompiledGraph compiled = g.compile();
-            auto run = run_graph(ctx(), compiled);
-            auto bytes = read_image(ctx(), *run->transient_image(*ldr), 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+            auto run = test::must(run_graph(ctx(), compiled));
+            auto bytes = test::must(read_image(ctx(), *run->transient_image(*ldr), 0, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL));
             ASSERT_EQ(bytes.size(), size_t(w) * h * 4);
             int worst = 0;
             for (size_t i = 0; i < size_t(w) * h; ++i) {

@@ -14,6 +14,7 @@
 #include <facet/gpu/resources.h>
 #include <facet/gpu/transfer.h>
 #include <facet/shader/compiler.h>
+#include "support/gpu_test.h"
 
 namespace facet::test {
 
@@ -32,17 +33,17 @@ inline std::vector<float> run_compute_probe(Context& context, std::string_view n
         return {};
     }
     Pipeline pipeline = std::move(built).value();
-    Buffer out(context, count * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::readback,
-               "probe output");
-    context.submit_and_wait([&](VkCommandBuffer cmd) {
+    Buffer out = must(Buffer::create(context, count * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                     MemoryUsage::readback, "probe output"));
+    must(context.submit_and_wait([&](VkCommandBuffer cmd) {
         pipeline.bind(cmd);
         const DescriptorWrite writes[] = {DescriptorWrite::storage_buffer(out.handle())};
         pipeline.push_descriptors(cmd, writes);
         vkCmdDispatch(cmd, 1, 1, 1);
         memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
-    });
-    out.invalidate();
+    }));
+    must(out.invalidate());
     std::vector<float> values(count);
     std::memcpy(values.data(), out.mapped(), count * sizeof(float));
     return values;

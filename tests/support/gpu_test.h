@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <stdexcept>
+#include <string>
+#include <utility>
 
 #include <facet/gpu/context.h>
 
@@ -16,6 +19,14 @@ ContextOptions context_options();
 // Context::create / Context::adopt for tests; every test context is made here.
 Result<std::unique_ptr<Context>> create_context(const ContextOptions& options = context_options());
 Result<std::unique_ptr<Context>> adopt_context(const HostVulkan& host, const ContextOptions& options = context_options());
+
+// A Result's value for test set-up that is expected to succeed; its Error otherwise
+// ends the test as a failure (gtest reports the exception with the message).
+template <class T>
+T must(Result<T> result) {
+    if (!result.ok()) throw std::runtime_error("unexpected Error: " + result.error().message);
+    return std::move(result).value();
+}
 
 // The shared context (created on first use; a test that cannot get it fails).
 Context& gpu();

@@ -11,17 +11,19 @@
 #include <facet/graph/transfer_passes.h>
 #include "ibl/environment_cube.h"
 #include <facet/shader/program_cache.h>
+#include "support/gpu_test.h"
 
 namespace facet::test {
 
 CubeLevels run_ibl(Context& context, const Equirect& e, const AddPasses& passes) {
     ShaderCompiler compiler;
     ProgramCache programs(context, compiler);
-    Sampler equirect_sampler(context, VK_FILTER_LINEAR, false, true, "equirect");
-    Sampler cube_sampler(context, VK_FILTER_LINEAR, true, false, "cube");
-    Buffer staging(context, e.rgba.size() * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::upload, "staging");
+    Sampler equirect_sampler = must(Sampler::create(context, VK_FILTER_LINEAR, false, true, "equirect"));
+    Sampler cube_sampler = must(Sampler::create(context, VK_FILTER_LINEAR, true, false, "cube"));
+    Buffer staging = must(
+        Buffer::create(context, e.rgba.size() * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::upload, "staging"));
     std::memcpy(staging.mapped(), e.rgba.data(), e.rgba.size() * 4);
-    staging.flush();
+    must(staging.flush());
     RenderGraph g;
     ImageDesc ed;
     ed.width = e.w;
@@ -39,14 +41,14 @@ CubeLevels run_ibl(Context& context, const Equirect& e, const AddPasses& passes)
     g.export_image(result, {VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                             VK_ACCESS_2_TRANSFER_READ_BIT});
     CompiledGraph compiled = g.compile();
-    auto run = run_graph(context, compiled);
+    auto run = must(run_graph(context, compiled));
     Image& image = *run->transient_image(result);
     CubeLevels out;
     out.size = image.desc().width;
     for (uint32_t m = 0; m < image.desc().mip_levels; ++m) {
         std::vector<float> level;
         for (uint32_t f = 0; f < image.desc().array_layers; ++f) {
-            auto bytes = read_image(context, image, m, f, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+            auto bytes = must(read_image(context, image, m, f, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL));
             const size_t old = level.size();
             level.resize(old + bytes.size() / 4);
             std::memcpy(level.data() + old, bytes.data(), bytes.size());

@@ -51,22 +51,17 @@ struct TinyResult {
 };
 
 // Bake + render + teardown of everything but the context. Errors come back as a Result
-// or as a VulkanError thrown from deep inside; both are caught and returned.
+// (no exception crosses the public API: one that did would fail the calling test).
 inline TinyResult run_tiny_session(Context& context, const RenderJob& job = tiny_job()) {
     TinyResult out;
-    try {
-        auto session = RenderSession::create(context, job);
-        if (!session) return {session.error().message, session.error().vk_result};
-        auto images = (*session)->render_frame();
-        if (!images) return {images.error().message, images.error().vk_result};
-        double sum = 0;
-        for (size_t i = 0; i < images->hdr.size(); i += 4) sum += images->hdr[i] + images->hdr[i + 1] + images->hdr[i + 2];
-        out.mean_radiance = sum / (3.0 * images->hdr.size() / 4);
-        if (!std::isfinite(out.mean_radiance)) out.error = "non-finite image";
-    } catch (const VulkanError& e) {
-        out.error = e.what();
-        out.vk_result = e.result();
-    }
+    auto session = RenderSession::create(context, job);
+    if (!session) return {session.error().message, session.error().vk_result};
+    auto images = (*session)->render_frame();
+    if (!images) return {images.error().message, images.error().vk_result};
+    double sum = 0;
+    for (size_t i = 0; i < images->hdr.size(); i += 4) sum += images->hdr[i] + images->hdr[i + 1] + images->hdr[i + 2];
+    out.mean_radiance = sum / (3.0 * images->hdr.size() / 4);
+    if (!std::isfinite(out.mean_radiance)) out.error = "non-finite image";
     return out;
 }
 

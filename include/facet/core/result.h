@@ -1,6 +1,8 @@
 #pragma once
 // Fallible calls return Result<T>: a value, or an Error carrying the VkResult (if any)
-// and a human reason (vk-bootstrap style). Programmer errors throw facet::UsageError.
+// and a human reason (vk-bootstrap style). Every public function reports what the
+// device, the user's data or files can cause that way; no exception crosses the public
+// API except UsageError, which marks programmer misuse (said in each header).
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -15,11 +17,15 @@ struct Error {
     VkResult vk_result = VK_SUCCESS;
 };
 
-// Thrown for Vulkan failures deep inside calls that have no Result (out of memory,
-// device lost), so that they reach the caller instead of aborting.
+// Internal to the engine: thrown for Vulkan failures deep inside its own calls and
+// caught at every public entry point, which returns it as an Error{message, vk_result}.
+// No public function lets it escape. (It stays declared here until every engine file
+// includes its private home, engine/core/guarded.h.)
 class VulkanError : public std::runtime_error {
 public:
     VulkanError(VkResult result, const std::string& what);
+    // Carries an Error on unchanged (its message already names the failure).
+    explicit VulkanError(const Error& error);
     VkResult result() const { return result_; }
 
 private:
@@ -34,7 +40,7 @@ public:
 
 const char* vk_result_name(VkResult result);
 
-// Throws VulkanError naming `what` unless result is VK_SUCCESS.
+// Internal, as VulkanError: throws VulkanError naming `what` unless result is VK_SUCCESS.
 void vk_check(VkResult result, const char* what);
 
 template <class T>

@@ -36,8 +36,8 @@ struct ContextOptions {
     std::vector<std::string> instance_extensions;
     std::vector<std::string> device_extensions;
     // The longest Facet waits for the GPU to finish one submission, in milliseconds.
-    // A wait that runs out throws VulkanError(VK_TIMEOUT, "timed out after N ms waiting
-    // for ...") instead of hanging, and the context takes no more work (timed_out()).
+    // A wait that runs out returns Error{"timed out after N ms waiting for ...",
+    // VK_TIMEOUT} instead of hanging, and the context takes no more work (timed_out()).
     // Generous by default: a large bake on a slow device takes seconds, not a minute.
     uint64_t fence_timeout_ms = 60'000;
     // Testing error paths: arms a fault (facet/gpu/faults.h) when the context is created
@@ -88,9 +88,10 @@ struct HostVulkan {
 // built on it) only after every other thread is done with it.
 //
 // Errors: create and adopt return an Error naming what is wrong. Work submitted on the
-// device (submit_and_wait and what is built on it) throws VulkanError when the device
-// fails (out of memory, device lost, a wait timed out); constructors of objects built on
-// a Context do the same. UsageError marks programmer misuse.
+// device (submit_and_wait and everything built on it) returns an Error carrying the
+// VkResult when the device fails (out of memory, device lost, a wait timed out); so do
+// the create() factories of objects built on a Context. No exception crosses the public
+// API; UsageError marks programmer misuse (documented where it applies).
 class Context {
 public:
     // A device of Facet's own: instance (with validation when asked), device, queue.
@@ -127,10 +128,10 @@ public:
     // reported while a context was being destroyed (objects left undestroyed).
     static uint32_t process_validation_message_count();
     // True once a submission reported VK_ERROR_DEVICE_LOST: every later submission
-    // throws VulkanError(VK_ERROR_DEVICE_LOST); destroying objects stays valid.
+    // returns an Error with VK_ERROR_DEVICE_LOST; destroying objects stays valid.
     bool device_lost() const { return device_lost_.load(); }
     // True once a wait for the GPU ran past ContextOptions::fence_timeout_ms: every later
-    // submission throws VulkanError(VK_TIMEOUT) at once; destroying objects stays valid.
+    // submission returns an Error with VK_TIMEOUT at once; destroying objects stays valid.
     bool timed_out() const { return timed_out_.load(); }
     uint64_t fence_timeout_ms() const { return fence_timeout_ms_; }
 
@@ -143,12 +144,14 @@ public:
 
     // Records with `record` into a one-time command buffer, submits (through
     // HostVulkan::submit when given), waits on Facet's fence for at most
-    // fence_timeout_ms. `what` names the work in a timeout's message. Throws VulkanError
-    // on failure (VK_TIMEOUT: "timed out after N ms waiting for <what>").
-    void submit_and_wait(const std::function<void(VkCommandBuffer)>& record,
-                         const char* what = "a one-shot submission");
+    // fence_timeout_ms. `what` names the work in a timeout's message. Returns an Error on
+    // failure (VK_TIMEOUT: "timed out after N ms waiting for <what>"; VK_ERROR_DEVICE_LOST;
+    // out of memory), also when `record` itself fails inside the engine (e.g. a view it
+    // creates); a UsageError `record` throws passes through.
+    Status submit_and_wait(const std::function<void(VkCommandBuffer)>& record,
+                           const char* what = "a one-shot submission");
     // Submits an already recorded command buffer and waits for it, as above.
-    void submit_and_wait(VkCommandBuffer cmd, const char* what = "a submitted command buffer");
+    Status submit_and_wait(VkCommandBuffer cmd, const char* what = "a submitted command buffer");
 
     PFN_vkCmdPushDescriptorSetKHR cmd_push_descriptor_set = nullptr;
     PFN_vkCmdBeginDebugUtilsLabelEXT cmd_begin_label = nullptr;
@@ -157,6 +160,8 @@ public:
 private:
     Context() = default;
     void finish_setup();
+    // The throwing implementations behind submit_and_wait (which catches).
+    void submit_recorded(const std::function<void(VkCommandBuffer)>& record, const char* what);
     void submit_locked(VkCommandBuffer cmd, const char* what);
     static VKAPI_ATTR VkBool32 VKAPI_CALL on_debug_message(
         VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,

@@ -3,15 +3,17 @@
 // blocks sub-allocated first-fit per memory type, dedicated allocations for large
 // resources and where the driver asks for them.
 //
-// Errors: allocation throws VulkanError (VK_ERROR_OUT_OF_DEVICE_MEMORY and the like,
-// naming the call and the size). Thread safety: every member may be called from several
-// threads at once.
+// Errors: allocation returns an Error (VK_ERROR_OUT_OF_DEVICE_MEMORY and the like,
+// naming the call and the size); so do flush and invalidate. Nothing here throws.
+// Thread safety: every member may be called from several threads at once.
 #include <cstdint>
 #include <memory>
 #include <mutex>
 #include <vector>
 
 #include <vulkan/vulkan.h>
+
+#include <facet/core/result.h>
 
 namespace facet {
 
@@ -52,16 +54,17 @@ public:
     Allocator(const Allocator&) = delete;
     Allocator& operator=(const Allocator&) = delete;
 
-    // Throws VulkanError (VK_ERROR_OUT_OF_DEVICE_MEMORY, ...) on failure.
-    Allocation allocate(const VkMemoryRequirements& requirements, MemoryUsage usage,
-                        bool dedicated = false);
-    Allocation allocate_for(VkBuffer buffer, MemoryUsage usage);  // allocates and binds
-    Allocation allocate_for(VkImage image, MemoryUsage usage);    // allocates and binds
+    // An Error (VK_ERROR_OUT_OF_DEVICE_MEMORY, ...) names the call and the size.
+    Result<Allocation> allocate(const VkMemoryRequirements& requirements, MemoryUsage usage,
+                                bool dedicated = false);
+    Result<Allocation> allocate_for(VkBuffer buffer, MemoryUsage usage);  // allocates and binds
+    Result<Allocation> allocate_for(VkImage image, MemoryUsage usage);    // allocates and binds
     void free(Allocation& allocation);
 
-    // Makes host writes visible / device writes visible to the host for non-coherent memory.
-    void flush(const Allocation& allocation);
-    void invalidate(const Allocation& allocation);
+    // Makes host writes visible / device writes visible to the host for non-coherent
+    // memory (nothing to do, and always Ok, for coherent memory).
+    Status flush(const Allocation& allocation);
+    Status invalidate(const Allocation& allocation);
 
     AllocatorStats stats() const;
 
@@ -77,6 +80,10 @@ private:
         uint32_t live = 0;
     };
 
+    // The throwing implementations behind the public calls (which catch).
+    Allocation allocate_or_throw(const VkMemoryRequirements& requirements, MemoryUsage usage, bool dedicated);
+    Allocation bind_or_throw(VkBuffer buffer, MemoryUsage usage);
+    Allocation bind_or_throw(VkImage image, MemoryUsage usage);
     uint32_t find_memory_type(uint32_t type_bits, MemoryUsage usage) const;
     Allocation allocate_dedicated(VkDeviceSize size, uint32_t type, VkBuffer buffer,
                                   VkImage image);

@@ -2,16 +2,19 @@
 // Owning wrappers for buffers, images and samplers: each destroys its Vulkan objects
 // and frees its memory exactly once (move-only).
 //
-// Errors: the constructors throw VulkanError when the device fails (out of memory) and
-// UsageError for programmer misuse (a zero size, mip or layer count; a format
-// bytes_per_texel does not know). Thread safety: objects may be created and destroyed on
-// several threads at once (Context); one object belongs to one thread at a time.
+// Errors: create() returns an Error when the device fails (out of memory, naming the
+// call, the object and the size); flush and invalidate likewise. UsageError marks
+// programmer misuse (a zero size, mip or layer count; a format bytes_per_texel does not
+// know). Image::view is the one exception, see there. Thread safety: objects may be
+// created and destroyed on several threads at once (Context); one object belongs to one
+// thread at a time.
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include <vulkan/vulkan.h>
 
+#include <facet/core/result.h>
 #include <facet/gpu/memory.h>
 
 namespace facet {
@@ -39,9 +42,9 @@ uint32_t bytes_per_texel(VkFormat format);  // throws UsageError for formats it 
 
 class Buffer {
 public:
-    Buffer() = default;
-    Buffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory,
-           const std::string& name);
+    Buffer() = default;  // empty (no buffer): a placeholder to assign a created one to
+    static Result<Buffer> create(Context& context, VkDeviceSize size, VkBufferUsageFlags usage,
+                                 MemoryUsage memory, const std::string& name);
     ~Buffer();
     Buffer(Buffer&& other) noexcept;
     Buffer& operator=(Buffer&& other) noexcept;
@@ -51,11 +54,13 @@ public:
     VkBufferUsageFlags usage() const { return usage_; }
     // Host pointer (upload/readback memory only); call invalidate() before reading.
     void* mapped() const { return allocation_.mapped; }
-    void flush() const;
-    void invalidate() const;
+    Status flush() const;
+    Status invalidate() const;
     explicit operator bool() const { return buffer_ != VK_NULL_HANDLE; }
 
 private:
+    Buffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory,
+           const std::string& name);  // throws the engine's internal VulkanError
     void reset();
     Context* context_ = nullptr;
     VkBuffer buffer_ = VK_NULL_HANDLE;
@@ -66,9 +71,9 @@ private:
 
 class Image {
 public:
-    Image() = default;
-    Image(Context& context, const ImageDesc& desc, VkImageUsageFlags usage,
-          const std::string& name);
+    Image() = default;  // empty (no image): a placeholder to assign a created one to
+    static Result<Image> create(Context& context, const ImageDesc& desc, VkImageUsageFlags usage,
+                                const std::string& name);
     ~Image();
     Image(Image&& other) noexcept;
     Image& operator=(Image&& other) noexcept;
@@ -80,11 +85,19 @@ public:
 
     // A view of some mips/layers (cached; owned by the image). view_type
     // VK_IMAGE_VIEW_TYPE_MAX_ENUM means: cube for cube images, else 2D / 2D array.
+    // Meant for a pass's execute step (or other work the engine runs): creating a view
+    // fails only when the driver runs out of memory, and then throws the engine's
+    // internal VulkanError, which the run that executes the pass returns as its Error.
+    // Outside such work, try_view returns the failure instead.
     VkImageView view(VkImageSubresourceRange range,
                      VkImageViewType view_type = VK_IMAGE_VIEW_TYPE_MAX_ENUM);
     VkImageView view() { return view(whole_range(desc_)); }
+    Result<VkImageView> try_view(VkImageSubresourceRange range,
+                                 VkImageViewType view_type = VK_IMAGE_VIEW_TYPE_MAX_ENUM);
 
 private:
+    Image(Context& context, const ImageDesc& desc, VkImageUsageFlags usage,
+          const std::string& name);  // throws the engine's internal VulkanError
     void reset();
     struct CachedView {
         VkImageSubresourceRange range;
@@ -102,17 +115,20 @@ private:
 
 class Sampler {
 public:
-    Sampler() = default;
+    Sampler() = default;  // empty (no sampler): a placeholder to assign a created one to
     // Clamp-to-edge on all axes (repeat in u when repeat_u: equirect longitude).
-    Sampler(Context& context, VkFilter filter, bool mipmaps, bool repeat_u, const std::string& name);
+    static Result<Sampler> create(Context& context, VkFilter filter, bool mipmaps, bool repeat_u,
+                                  const std::string& name);
     // Any other state (e.g. a glTF sampler's filters and wraps).
-    Sampler(Context& context, const VkSamplerCreateInfo& info, const std::string& name);
+    static Result<Sampler> create(Context& context, const VkSamplerCreateInfo& info, const std::string& name);
     ~Sampler();
     Sampler(Sampler&& other) noexcept;
     Sampler& operator=(Sampler&& other) noexcept;
     VkSampler handle() const { return sampler_; }
+    explicit operator bool() const { return sampler_ != VK_NULL_HANDLE; }
 
 private:
+    Sampler(Context& context, const VkSamplerCreateInfo& info, const std::string& name);
     Context* context_ = nullptr;
     VkSampler sampler_ = VK_NULL_HANDLE;
 };

@@ -7,6 +7,11 @@
 // Frames in flight: the host picks N and a slot per frame (frame_index % N). The executor
 // never waits on the device for a slot: before reusing slot k the host must have waited
 // for the work last recorded in slot k (its own fence), as it does for its command buffers.
+//
+// Errors: prepare, record, submit_and_wait and detach_image return an Error (with its
+// VkResult) for what the device can cause: a graph it cannot hold, out of memory, device
+// lost, a wait that timed out. UsageError marks programmer misuse: frames_in_flight 0,
+// a frame slot out of range, a run recorded twice.
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -34,7 +39,8 @@ public:
     // shape does not use are freed. The run (owned here) stays valid until the slot is
     // used again; `compiled` and its RenderGraph must live until it is recorded (and
     // while its images are looked up), not until the GPU is done. Errors: a graph the
-    // device cannot hold, out of device memory. frame out of range: UsageError.
+    // device cannot hold, out of device memory (the slot then holds no run and no
+    // resources). frame out of range: UsageError.
     Result<GraphRun*> prepare(const CompiledGraph& compiled, uint32_t frame = 0);
     // prepare() and record every pass into the host's command buffer (recording).
     Result<GraphRun*> record(const CompiledGraph& compiled, VkCommandBuffer cmd, uint32_t frame = 0);

@@ -5,6 +5,13 @@
 // the host submits). A GraphRun owns everything the recorded commands use, so it must
 // outlive their execution. The CompiledGraph (and its RenderGraph) must live while the
 // run allocates, records and looks up images; timings() does not need them.
+//
+// Errors: prepare, record and submit_and_wait return an Error (with its VkResult) when
+// the device fails: a graph no device holds, out of memory, device lost, a wait that
+// timed out, a pass whose engine-side work failed. UsageError marks programmer misuse
+// (recording a run twice, looking up an image the graph does not use or before
+// prepare). A pass's execute step may let the engine's internal exceptions (from
+// PassContext::view, Image::view) propagate: the run catches them and returns an Error.
 #include <functional>
 #include <memory>
 #include <string>
@@ -12,6 +19,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include <facet/core/result.h>
 #include <facet/graph/compiled_graph.h>
 
 namespace facet {
@@ -59,9 +67,12 @@ struct PassTiming {
 
 class GraphRun {
 public:
+    // Makes nothing on the device yet: prepare() (or the first record/submit_and_wait)
+    // allocates the physical resources.
     GraphRun(Context& context, const CompiledGraph& compiled);
-    // Takes matching images, buffers and the query pool from `pool` (what is left there
-    // is the caller's to keep or free). The pool's resources must be idle.
+    // prepare() takes matching images, buffers and the query pool from `pool` (what is
+    // left there is the caller's to keep or free); `pool` must live until then, and its
+    // resources must be idle.
     GraphRun(Context& context, const CompiledGraph& compiled, GraphResourcePool& pool);
     ~GraphRun();
     // Moves every transient resource and the query pool into `pool` (for the next run);
@@ -70,15 +81,20 @@ public:
     GraphRun(const GraphRun&) = delete;
     GraphRun& operator=(const GraphRun&) = delete;
 
+    // Allocates the physical resources (after a success, later calls do nothing). An
+    // Error names a graph the device cannot hold or the allocation that failed; nothing
+    // is left half made (what was taken from the pool goes back to it).
+    Status prepare();
     // Records everything into the host's command buffer (which must be recording).
-    void record(VkCommandBuffer cmd);
+    Status record(VkCommandBuffer cmd);
     // Records into a one-time command buffer of the context, submits it and waits.
-    void submit_and_wait();
+    Status submit_and_wait();
     // Progress on long work: one submission per pass, `progress` called after each with
     // the number of passes done, the total and the pass's name. Barriers still hold:
-    // they order work across submissions to the same queue.
+    // they order work across submissions to the same queue. An exception `progress`
+    // throws (e.g. to stop) passes through to the caller.
     using Progress = std::function<void(uint32_t done, uint32_t total, const std::string& pass)>;
-    void submit_and_wait(const Progress& progress);
+    Status submit_and_wait(const Progress& progress);
 
     // GPU time of every executed pass, in order; call after the work completed (the
     // compiled graph may be gone by then). Empty when the queue has no timestamps.
@@ -103,7 +119,10 @@ private:
     };
     VkImageView view(uint32_t resource, ImageRange range, VkImageViewType type);
     const ImageDesc& image_desc(uint32_t resource) const;
-    void allocate(GraphResourcePool* pool);
+    void release_all();
+    void allocate(GraphResourcePool* pool);  // throws the engine's internal VulkanError
+    void record_or_throw(VkCommandBuffer cmd);
+    void submit_or_throw(const Progress& progress);
     void record_barriers(VkCommandBuffer cmd, const BarrierBatch& batch) const;
     void record_pass(VkCommandBuffer cmd, uint32_t index);
     VkImage physical_image(uint32_t physical) const;
@@ -117,11 +136,13 @@ private:
     VkQueryPool queries_ = VK_NULL_HANDLE;
     uint32_t query_count_ = 0;
     std::vector<std::string> pass_names_;  // in execution order
+    GraphResourcePool* pool_ = nullptr;    // until prepare()
+    bool prepared_ = false;
     bool recorded_ = false;
 };
 
 // Compiles nothing: runs an already compiled graph and returns its run (for timings
-// and exported resources).
-std::unique_ptr<GraphRun> run_graph(Context& context, const CompiledGraph& compiled);
+// and exported resources), or the Error that stopped it.
+Result<std::unique_ptr<GraphRun>> run_graph(Context& context, const CompiledGraph& compiled);
 
 }  // namespace facet

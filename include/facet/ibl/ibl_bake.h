@@ -93,7 +93,8 @@ struct IblTargets {
 };
 
 // Owns what the passes use beyond the graph's resources (samplers, the staging buffer
-// of a file's texels), so it must outlive the graph's run.
+// of a file's texels), so it must outlive the graph's run. Its constructor makes nothing on the
+// device; add_passes returns what the device can fail at as an Error.
 class IblBake {
 public:
     IblBake(Context& context, ProgramCache& programs);
@@ -105,6 +106,7 @@ public:
     Result<IblImages> add_passes(RenderGraph& graph, const EnvironmentSource& source, const IblSettings& settings,
                                  const SpecularSplit& split = {}, const IblTargets& targets = {});
 
+    // Made by the first add_passes (which returns an Error if the device cannot make it).
     const Sampler& cube_sampler() const { return *cube_sampler_; }
 
 private:

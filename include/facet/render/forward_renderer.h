@@ -5,6 +5,7 @@
 // under it, the display transform (render/tonemap.h) and one single-sample pass per
 // component view (AOV). add_passes() composes them into the programs' frame. An engine
 // can stop at linear HDR: add_forward_pass() alone.
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
@@ -85,8 +86,12 @@ public:
     // `frames_in_flight` slots of per-frame data (camera, lights, disks): the pass writes
     // slot `frame` when it is recorded, so the host must have waited for the work last
     // recorded with that slot (its frame fence) before recording the slot again. Every
-    // pass of one slot in one frame shares its camera and lights.
-    ForwardRenderer(Context& context, ProgramCache& programs, uint32_t frames_in_flight = 1);
+    // pass of one slot in one frame shares its camera and lights. An Error when the
+    // device cannot make the samplers or slot buffers; frames_in_flight 0: UsageError.
+    // Device failures while a pass records (a slot's lights buffer growing) reach the
+    // caller as the Error of the run that records it (GraphExecutor, GraphRun).
+    static Result<std::unique_ptr<ForwardRenderer>> create(Context& context, ProgramCache& programs,
+                                                           uint32_t frames_in_flight = 1);
     ~ForwardRenderer();
 
     uint32_t frames_in_flight() const { return static_cast<uint32_t>(slots_.size()); }
@@ -148,6 +153,7 @@ private:
                                  const ForwardTargets& targets, const std::optional<IblInputs>& ibl,
                                  std::vector<const Pipeline*> pipelines, uint32_t frame);
     Slot& slot(uint32_t frame);
+    ForwardRenderer(Context& context, ProgramCache& programs, uint32_t frames_in_flight);
 
     Context& context_;
     ProgramCache& programs_;

@@ -6,10 +6,12 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include <facet/core/result.h>
 #include <facet/gpu/resources.h>
 #include <facet/scene/scene.h>
 
@@ -36,16 +38,20 @@ struct GpuTexture {
     VkSampler sampler = VK_NULL_HANDLE;
 };
 
+// Errors: create and update_materials return an Error (with its VkResult) when the
+// device fails (out of memory, device lost, a wait timed out); nothing is left half made.
+// UsageError marks programmer misuse (update_materials with another material count).
 class GpuScene {
 public:
-    GpuScene(Context& context, const Scene& scene);
+    // Uploads the scene's geometry, materials and textures. `scene` must outlive it.
+    static Result<std::unique_ptr<GpuScene>> create(Context& context, const Scene& scene);
     GpuScene(const GpuScene&) = delete;
     GpuScene& operator=(const GpuScene&) = delete;
 
     const Scene& scene() const { return scene_; }
     // New factors for the same materials (textures and alpha modes unchanged), uploaded
     // now; call between frames.
-    void update_materials(const std::vector<Material>& materials);
+    Status update_materials(const std::vector<Material>& materials);
     VkBuffer vertices() const { return vertices_.handle(); }
     VkBuffer indices() const { return indices_.handle(); }
     VkBuffer instances() const { return instances_.handle(); }
@@ -60,6 +66,7 @@ public:
     uint64_t texture_bytes() const { return texture_bytes_; }
 
 private:
+    GpuScene(Context& context, const Scene& scene);  // throws the engine's internal VulkanError
     Image& texture_image(uint32_t image, bool srgb);
     Context& context_;
     const Scene& scene_;

@@ -51,11 +51,12 @@ public:
 
     // The environment as the reference sees it: texels (row 0 = top) and their sampling
     // distribution, uploaded once. Without one, only lights and emission are integrated.
-    void set_environment(std::span<const float> rgba, uint32_t width, uint32_t height, float intensity);
+    // An Error when the device fails (out of memory, device lost).
+    Status set_environment(std::span<const float> rgba, uint32_t width, uint32_t height, float intensity);
 
     using Progress = std::function<void(const ReferenceStats&)>;
     // Accumulates until converged; then `accumulation()` holds the sums (rgb, a = count)
-    // in GENERAL layout.
+    // in GENERAL layout. A device failure is an Error (no exception leaves it).
     Result<ReferenceStats> accumulate(const ReferenceSurface& surface, const FrameSettings& frame,
                                       const ReferenceSettings& settings, const Progress& progress = {});
     Image& accumulation() { return *accumulation_; }

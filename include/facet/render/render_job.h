@@ -64,7 +64,9 @@ struct RenderedImages {
 
 using ProgressFn = std::function<void(const std::string& line)>;
 
-// Everything loaded and baked, ready to render frames.
+// Everything loaded and baked, ready to render frames. Errors: every call returns what the user's
+// files, the data or the device can cause as an Error (with its VkResult for device
+// failures); no exception leaves it.
 class RenderSession {
 public:
     static Result<std::unique_ptr<RenderSession>> create(Context& context, const RenderJob& job,
@@ -105,7 +107,8 @@ public:
         // Each input as a factor alone or times the model's texture (the thesis' choice).
         bool albedo_texture = true, metal_rough_texture = true, occlusion_texture = true;
     };
-    void override_materials(const std::optional<MaterialFactors>& factors);
+    // An Error when the device fails uploading them (the GPU scene keeps the old materials).
+    Status override_materials(const std::optional<MaterialFactors>& factors);
     // Shader hot reload: every pipeline built again from the current sources, all or
     // nothing (a compile error keeps the last good ones and is returned). Between frames.
     Result<size_t> reload_shaders();

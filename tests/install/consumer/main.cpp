@@ -35,8 +35,14 @@ void main() { uint i = gl_GlobalInvocationID.x; values[i] = i * i; }
     }
     facet::Pipeline& pipeline = built.value();
     const uint32_t count = 256;
-    facet::Buffer buffer(ctx, count * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, facet::MemoryUsage::readback, "squares");
-    ctx.submit_and_wait([&](VkCommandBuffer cmd) {
+    auto made = facet::Buffer::create(ctx, count * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                      facet::MemoryUsage::readback, "squares");
+    if (!made) {
+        std::fprintf(stderr, "consumer: %s\n", made.error().message.c_str());
+        return 1;
+    }
+    facet::Buffer& buffer = *made;
+    facet::Status done = ctx.submit_and_wait([&](VkCommandBuffer cmd) {
         pipeline.bind(cmd);
         const facet::DescriptorWrite writes[] = {facet::DescriptorWrite::storage_buffer(buffer.handle())};
         pipeline.push_descriptors(cmd, writes);
@@ -44,7 +50,11 @@ void main() { uint i = gl_GlobalInvocationID.x; values[i] = i * i; }
         facet::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                        VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
     });
-    buffer.invalidate();
+    if (done) done = buffer.invalidate();
+    if (!done) {
+        std::fprintf(stderr, "consumer: %s\n", done.error().message.c_str());
+        return 1;
+    }
     const auto* values = static_cast<const uint32_t*>(buffer.mapped());
     for (uint32_t i = 0; i < count; ++i)
         if (values[i] != i * i) {
