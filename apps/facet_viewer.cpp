@@ -317,7 +317,7 @@ int run(const Options& o) {
             ui->rebuild(*swapchain);
             vkDestroySemaphore(context.device(), sync.acquired, nullptr);
             VkSemaphoreCreateInfo semaphore{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-            vk_check(vkCreateSemaphore(context.device(), &semaphore, nullptr, &sync.acquired), "vkCreateSemaphore");
+            check_vk(vkCreateSemaphore(context.device(), &semaphore, nullptr, &sync.acquired), "vkCreateSemaphore");
             continue;
         }
         if (acquired != VK_SUCCESS && acquired != VK_SUBOPTIMAL_KHR)
@@ -382,14 +382,14 @@ int run(const Options& o) {
         }
         const auto frame_start = std::chrono::steady_clock::now();
         CompiledGraph compiled = graph.compile();
-        vk_check(vkResetCommandBuffer(sync.cmd, 0), "vkResetCommandBuffer");
+        check_vk(vkResetCommandBuffer(sync.cmd, 0), "vkResetCommandBuffer");
         VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
         begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        vk_check(vkBeginCommandBuffer(sync.cmd, &begin), "vkBeginCommandBuffer");
+        check_vk(vkBeginCommandBuffer(sync.cmd, &begin), "vkBeginCommandBuffer");
         auto recorded = executor.record(compiled, sync.cmd);
         if (!recorded) throw std::runtime_error(recorded.error().message);
         GraphRun& run = **recorded;
-        vk_check(vkEndCommandBuffer(sync.cmd), "vkEndCommandBuffer");
+        check_vk(vkEndCommandBuffer(sync.cmd), "vkEndCommandBuffer");
         VkSemaphoreSubmitInfo wait{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
         wait.semaphore = sync.acquired;
         wait.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
@@ -405,7 +405,7 @@ int run(const Options& o) {
         submit.pCommandBufferInfos = &buffer;
         submit.signalSemaphoreInfoCount = 1;
         submit.pSignalSemaphoreInfos = &signal;
-        vk_check(vkQueueSubmit2(context.queue(), 1, &submit, sync.done), "vkQueueSubmit2");
+        check_vk(vkQueueSubmit2(context.queue(), 1, &submit, sync.done), "vkQueueSubmit2");
         VkPresentInfoKHR present{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
         present.waitSemaphoreCount = 1;
         present.pWaitSemaphores = &sync.rendered;
@@ -415,8 +415,8 @@ int run(const Options& o) {
         present.pImageIndices = &index;
         const VkResult presented = vkQueuePresentKHR(context.queue(), &present);
         // One frame in flight: the graph's resources live until its work is done.
-        vk_check(vkWaitForFences(context.device(), 1, &sync.done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
-        vk_check(vkResetFences(context.device(), 1, &sync.done), "vkResetFences");
+        check_vk(vkWaitForFences(context.device(), 1, &sync.done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+        check_vk(vkResetFences(context.device(), 1, &sync.done), "vkResetFences");
         if (presented != VK_SUCCESS && presented != VK_SUBOPTIMAL_KHR && presented != VK_ERROR_OUT_OF_DATE_KHR)
             throw std::runtime_error(std::string("vkQueuePresentKHR: ") + vk_result_name(presented));
         if (frame > 0 && !capture) {

@@ -3,6 +3,7 @@
 // buffer and synchronisation objects, and screenshots.
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include <facet/gpu/context.h>
 #include <facet/io/image_io.h>
 #include <facet/render/camera.h>
+#include "check_vk.h"
 
 namespace facet {
 
@@ -66,17 +68,17 @@ struct FrameSync {
         VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
         pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
         pool_info.queueFamilyIndex = c.queue_family();
-        vk_check(vkCreateCommandPool(device, &pool_info, nullptr, &pool), "vkCreateCommandPool");
+        check_vk(vkCreateCommandPool(device, &pool_info, nullptr, &pool), "vkCreateCommandPool");
         VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
         alloc.commandPool = pool;
         alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
         alloc.commandBufferCount = 1;
-        vk_check(vkAllocateCommandBuffers(device, &alloc, &cmd), "vkAllocateCommandBuffers");
+        check_vk(vkAllocateCommandBuffers(device, &alloc, &cmd), "vkAllocateCommandBuffers");
         VkSemaphoreCreateInfo semaphore{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-        vk_check(vkCreateSemaphore(device, &semaphore, nullptr, &acquired), "vkCreateSemaphore");
-        vk_check(vkCreateSemaphore(device, &semaphore, nullptr, &rendered), "vkCreateSemaphore");
+        check_vk(vkCreateSemaphore(device, &semaphore, nullptr, &acquired), "vkCreateSemaphore");
+        check_vk(vkCreateSemaphore(device, &semaphore, nullptr, &rendered), "vkCreateSemaphore");
         VkFenceCreateInfo fence{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-        vk_check(vkCreateFence(device, &fence, nullptr, &done), "vkCreateFence");
+        check_vk(vkCreateFence(device, &fence, nullptr, &done), "vkCreateFence");
     }
     ~FrameSync() {
         vkDestroyFence(device, done, nullptr);

@@ -7,12 +7,13 @@
 
 #include <facet/gpu/context.h>
 #include <facet/graph/graph_run.h>
+#include "check_vk.h"
 #include "swapchain.h"
 
 namespace facet {
 namespace {
 
-void check_vk(VkResult r) { vk_check(r, "Dear ImGui's Vulkan backend"); }
+void check_imgui_vk(VkResult r) { check_vk(r, "Dear ImGui's Vulkan backend"); }
 
 }  // namespace
 
@@ -23,7 +24,7 @@ ViewerUi::ViewerUi(Context& context, GLFWwindow* window, const Swapchain& swapch
     pool.maxSets = 16;
     pool.poolSizeCount = 1;
     pool.pPoolSizes = sizes;
-    vk_check(vkCreateDescriptorPool(context.device(), &pool, nullptr, &pool_), "vkCreateDescriptorPool");
+    check_vk(vkCreateDescriptorPool(context.device(), &pool, nullptr, &pool_), "vkCreateDescriptorPool");
 
     // The graph leaves the image in COLOR_ATTACHMENT_OPTIMAL and moves it on afterwards,
     // so the render pass keeps that layout and loads what the frame copied in.
@@ -46,7 +47,7 @@ ViewerUi::ViewerUi(Context& context, GLFWwindow* window, const Swapchain& swapch
     info.pAttachments = &color;
     info.subpassCount = 1;
     info.pSubpasses = &subpass;
-    vk_check(vkCreateRenderPass(context.device(), &info, nullptr, &render_pass_), "vkCreateRenderPass");
+    check_vk(vkCreateRenderPass(context.device(), &info, nullptr, &render_pass_), "vkCreateRenderPass");
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -63,7 +64,7 @@ ViewerUi::ViewerUi(Context& context, GLFWwindow* window, const Swapchain& swapch
     init.MinImageCount = 2;
     init.ImageCount = uint32_t(swapchain.images().size());
     init.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
-    init.CheckVkResultFn = check_vk;
+    init.CheckVkResultFn = check_imgui_vk;
     ImGui_ImplVulkan_Init(&init, render_pass_);
     if (Status fonts = context.submit_and_wait([](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
         !fonts)
@@ -99,7 +100,7 @@ void ViewerUi::rebuild(const Swapchain& swapchain) {
         view.format = swapchain.format();
         view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
         VkImageView v = VK_NULL_HANDLE;
-        vk_check(vkCreateImageView(context_.device(), &view, nullptr, &v), "vkCreateImageView");
+        check_vk(vkCreateImageView(context_.device(), &view, nullptr, &v), "vkCreateImageView");
         views_.push_back(v);
         VkFramebufferCreateInfo fb{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
         fb.renderPass = render_pass_;
@@ -109,7 +110,7 @@ void ViewerUi::rebuild(const Swapchain& swapchain) {
         fb.height = extent_.height;
         fb.layers = 1;
         VkFramebuffer f = VK_NULL_HANDLE;
-        vk_check(vkCreateFramebuffer(context_.device(), &fb, nullptr, &f), "vkCreateFramebuffer");
+        check_vk(vkCreateFramebuffer(context_.device(), &fb, nullptr, &f), "vkCreateFramebuffer");
         framebuffers_.push_back(f);
     }
     ImGui_ImplVulkan_SetMinImageCount(2);

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <mutex>
 #include <string>
+#include "core/vulkan_error.h"
 
 namespace facet {
 

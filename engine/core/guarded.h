@@ -8,6 +8,7 @@
 #include <utility>
 
 #include <facet/core/result.h>
+#include "core/vulkan_error.h"
 
 namespace facet {
 

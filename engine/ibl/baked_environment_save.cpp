@@ -15,6 +15,7 @@
 #include <facet/io/output_set.h>
 #include "ibl/bake_cancel.h"
 #include "ibl/baked_outputs.h"
+#include "core/vulkan_error.h"
 
 namespace facet {
 

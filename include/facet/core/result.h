@@ -17,21 +17,6 @@ struct Error {
     VkResult vk_result = VK_SUCCESS;
 };
 
-// Internal to the engine: thrown for Vulkan failures deep inside its own calls and
-// caught at every public entry point, which returns it as an Error{message, vk_result}.
-// No public function lets it escape. (It stays declared here until every engine file
-// includes its private home, engine/core/guarded.h.)
-class VulkanError : public std::runtime_error {
-public:
-    VulkanError(VkResult result, const std::string& what);
-    // Carries an Error on unchanged (its message already names the failure).
-    explicit VulkanError(const Error& error);
-    VkResult result() const { return result_; }
-
-private:
-    VkResult result_;
-};
-
 // Misuse of an API (a stale graph handle, a pass reading an unwritten resource).
 class UsageError : public std::logic_error {
 public:
@@ -39,9 +24,6 @@ public:
 };
 
 const char* vk_result_name(VkResult result);
-
-// Internal, as VulkanError: throws VulkanError naming `what` unless result is VK_SUCCESS.
-void vk_check(VkResult result, const char* what);
 
 template <class T>
 class [[nodiscard]] Result {
@@ -56,7 +38,9 @@ public:
     const T& value() const& { return std::get<0>(data_); }
     const Error& error() const { return std::get<1>(data_); }
     T* operator->() { return &value(); }
+    const T* operator->() const { return &value(); }
     T& operator*() { return value(); }
+    const T& operator*() const { return value(); }
 
 private:
     std::variant<T, Error> data_;

@@ -60,7 +60,7 @@ public:
 
 private:
     Buffer(Context& context, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUsage memory,
-           const std::string& name);  // throws the engine's internal VulkanError
+           const std::string& name);  // throws internally; create() returns the Error
     void reset();
     Context* context_ = nullptr;
     VkBuffer buffer_ = VK_NULL_HANDLE;
@@ -87,7 +87,7 @@ public:
     // VK_IMAGE_VIEW_TYPE_MAX_ENUM means: cube for cube images, else 2D / 2D array.
     // Meant for a pass's execute step (or other work the engine runs): creating a view
     // fails only when the driver runs out of memory, and then throws the engine's
-    // internal VulkanError, which the run that executes the pass returns as its Error.
+    // internal exception (std::runtime_error), which the run that executes the pass returns as its Error.
     // Outside such work, try_view returns the failure instead.
     VkImageView view(VkImageSubresourceRange range,
                      VkImageViewType view_type = VK_IMAGE_VIEW_TYPE_MAX_ENUM);
@@ -97,7 +97,7 @@ public:
 
 private:
     Image(Context& context, const ImageDesc& desc, VkImageUsageFlags usage,
-          const std::string& name);  // throws the engine's internal VulkanError
+          const std::string& name);  // throws internally; create() returns the Error
     void reset();
     struct CachedView {
         VkImageSubresourceRange range;

@@ -120,7 +120,7 @@ private:
     VkImageView view(uint32_t resource, ImageRange range, VkImageViewType type);
     const ImageDesc& image_desc(uint32_t resource) const;
     void release_all();
-    void allocate(GraphResourcePool* pool);  // throws the engine's internal VulkanError
+    void allocate(GraphResourcePool* pool);  // throws internally; prepare() returns the Error
     void record_or_throw(VkCommandBuffer cmd);
     void submit_or_throw(const Progress& progress);
     void record_barriers(VkCommandBuffer cmd, const BarrierBatch& batch) const;

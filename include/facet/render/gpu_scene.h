@@ -66,7 +66,7 @@ public:
     uint64_t texture_bytes() const { return texture_bytes_; }
 
 private:
-    GpuScene(Context& context, const Scene& scene);  // throws the engine's internal VulkanError
+    GpuScene(Context& context, const Scene& scene);  // throws internally; create() returns the Error
     Image& texture_image(uint32_t image, bool srgb);
     Context& context_;
     const Scene& scene_;
