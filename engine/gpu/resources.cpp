@@ -181,7 +181,7 @@ void Image::reset() {
     image_ = VK_NULL_HANDLE;
 }
 
-VkImageView Image::view(VkImageSubresourceRange range, VkImageViewType type) {
+VkImageView Image::make_view(VkImageSubresourceRange range, VkImageViewType type) {
     if (range.levelCount == VK_REMAINING_MIP_LEVELS) range.levelCount = desc_.mip_levels - range.baseMipLevel;
     if (range.layerCount == VK_REMAINING_ARRAY_LAYERS)
         range.layerCount = desc_.array_layers - range.baseArrayLayer;
@@ -211,8 +211,8 @@ VkImageView Image::view(VkImageSubresourceRange range, VkImageViewType type) {
     return view;
 }
 
-Result<VkImageView> Image::try_view(VkImageSubresourceRange range, VkImageViewType type) {
-    return guarded([&]() -> Result<VkImageView> { return view(range, type); });
+Result<VkImageView> Image::view(VkImageSubresourceRange range, VkImageViewType type) {
+    return guarded([&]() -> Result<VkImageView> { return make_view(range, type); });
 }
 
 // ---- Sampler ----

@@ -220,7 +220,7 @@ VkImageView GraphRun::view(uint32_t resource, ImageRange range, VkImageViewType 
     }
     if (!compiled_->physical_images[p].imported) {
         if (!images_[p]) throw UsageError("view of a detached image");
-        return images_[p].view(r, type);
+        return images_[p].make_view(r, type);
     }
     for (const auto& [key, v] : views_)
         if (key.physical == p && key.type == type && same_range(key.range, r)) return v;

@@ -150,8 +150,8 @@ GpuScene::GpuScene(Context& context, const Scene& scene)
     flat_normal_ = solid_image(context, VK_FORMAT_R8G8B8A8_UNORM, {128, 128, 255, 255}, 1, "default flat normal");
     black_2d_ = solid_image(context, VK_FORMAT_R8G8B8A8_UNORM, {0, 0, 0, 255}, 1, "default black");
     black_cube_ = solid_image(context, VK_FORMAT_R8G8B8A8_UNORM, {0, 0, 0, 255}, 6, "default black cube");
-    black_2d_view_ = black_2d_.view();
-    black_cube_view_ = black_cube_.view();
+    black_2d_view_ = or_throw(black_2d_.view());
+    black_cube_view_ = or_throw(black_cube_.view());
     for (size_t i = 0; i < scene.samplers.size(); ++i)
         samplers_.push_back(
             or_throw(Sampler::create(context, sampler_info(scene.samplers[i]), "gltf sampler " + std::to_string(i))));
@@ -166,14 +166,14 @@ GpuScene::GpuScene(Context& context, const Scene& scene)
             const TextureRef& ref = refs[s];
             if (ref.valid() && size_t(ref.image) < scene.images.size()) {
                 Image& image = texture_image(uint32_t(ref.image), srgb);
-                slots[s].view = image.view();
+                slots[s].view = or_throw(image.view());
                 slots[s].sampler = ref.sampler >= 0 && size_t(ref.sampler) < samplers_.size()
                                        ? samplers_[size_t(ref.sampler)].handle()
                                        : default_sampler_.handle();
                 has[s] = true;
             } else {
                 Image& fallback = s == size_t(TextureSlot::normal) ? flat_normal_ : srgb ? white_srgb_ : white_linear_;
-                slots[s] = {fallback.view(), default_sampler_.handle()};
+                slots[s] = {or_throw(fallback.view()), default_sampler_.handle()};
             }
         }
         material_textures_.push_back(slots);

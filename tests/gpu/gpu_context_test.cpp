@@ -147,8 +147,8 @@ TEST_F(GpuTest, ImageRoundTripPerMipAndLayer) {
     }
     // A view of one mip of one layer is cached.
     VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 1, 1, 2, 1};
-    EXPECT_EQ(image.view(range), image.view(range));
-    EXPECT_NE(image.view(range), image.view());
+    EXPECT_EQ(test::must(image.view(range)), test::must(image.view(range)));
+    EXPECT_NE(test::must(image.view(range)), test::must(image.view()));
 }
 
 TEST_F(GpuTest, BadUploadSizeIsAUsageError) {

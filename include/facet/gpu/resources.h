@@ -5,7 +5,7 @@
 // Errors: create() returns an Error when the device fails (out of memory, naming the
 // call, the object and the size); flush and invalidate likewise. UsageError marks
 // programmer misuse (a zero size, mip or layer count; a format bytes_per_texel does not
-// know). Image::view is the one exception, see there. Thread safety: objects may be
+// know). Thread safety: objects may be
 // created and destroyed on several threads at once (Context); one object belongs to one
 // thread at a time.
 #include <cstdint>
@@ -85,17 +85,15 @@ public:
 
     // A view of some mips/layers (cached; owned by the image). view_type
     // VK_IMAGE_VIEW_TYPE_MAX_ENUM means: cube for cube images, else 2D / 2D array.
-    // Meant for a pass's execute step (or other work the engine runs): creating a view
-    // fails only when the driver runs out of memory, and then throws the engine's
-    // internal exception (std::runtime_error), which the run that executes the pass returns as its Error.
-    // Outside such work, try_view returns the failure instead.
-    VkImageView view(VkImageSubresourceRange range,
-                     VkImageViewType view_type = VK_IMAGE_VIEW_TYPE_MAX_ENUM);
-    VkImageView view() { return view(whole_range(desc_)); }
-    Result<VkImageView> try_view(VkImageSubresourceRange range,
-                                 VkImageViewType view_type = VK_IMAGE_VIEW_TYPE_MAX_ENUM);
+    // Creating a view fails only when the driver runs out of memory: an Error.
+    // (Inside a pass, PassContext::view gives views of the graph's images.)
+    Result<VkImageView> view(VkImageSubresourceRange range,
+                             VkImageViewType view_type = VK_IMAGE_VIEW_TYPE_MAX_ENUM);
+    Result<VkImageView> view() { return view(whole_range(desc_)); }
 
 private:
+    friend class GraphRun;
+    VkImageView make_view(VkImageSubresourceRange range, VkImageViewType view_type);  // throws internally
     Image(Context& context, const ImageDesc& desc, VkImageUsageFlags usage,
           const std::string& name);  // throws internally; create() returns the Error
     void reset();

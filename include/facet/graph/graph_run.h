@@ -10,8 +10,9 @@
 // the device fails: a graph no device holds, out of memory, device lost, a wait that
 // timed out, a pass whose engine-side work failed. UsageError marks programmer misuse
 // (recording a run twice, looking up an image the graph does not use or before
-// prepare). A pass's execute step may let the engine's internal exceptions (from
-// PassContext::view, Image::view) propagate: the run catches them and returns an Error.
+// prepare). Inside a pass's execute step, PassContext::view fails (out of memory) by
+// throwing the engine's internal exception through the pass: the run that executes it
+// catches it and returns an Error, so it never reaches the caller.
 #include <functional>
 #include <memory>
 #include <string>
