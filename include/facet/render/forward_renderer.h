@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include <facet/core/brdf_model.h>
 #include <facet/core/result.h>
 #include <facet/gpu/resources.h>
 #include <facet/graph/render_graph.h>
@@ -45,6 +46,7 @@ struct FrameSettings {
     DisplaySettings display;
     bool skybox = true;
     bool height_correlated = false;  // glTF's Smith visibility for punctual lights
+    BrdfModel brdf = BrdfModel::gltf;  // design.md "BRDF models"
     bool multiscatter = false;       // energy compensation (needs IBL: LUT and irradiance)
     bool dominant_direction = false; // specular lookup bent towards n for rough lobes
     std::vector<Light> lights;       // every punctual light of the frame
