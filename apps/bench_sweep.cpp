@@ -231,7 +231,7 @@ int run_sweep(const cli::Parsed& a) {
                     settings.lut.sample_count = samples;
                     auto baked = sweep.bake(env, settings, "lut");
                     if (!baked) return fail("lut: " + baked.error().message);
-                    const ErrorStats stats = lut_error(*baked, false);
+                    const ErrorStats stats = lut_error(*baked, settings.lut.brdf == BrdfModel::gltf);
                     Row row{"", "lut", "lut " + std::to_string(size), std::to_string(samples) + " samples", baked->gpu_ms};
                     row.env = "any";
                     finish(stats, row, 0.05);
@@ -270,6 +270,7 @@ int run_sweep(const cli::Parsed& a) {
             base.frame.width = base.frame.height = 140;
             base.frame.skybox = false;
             base.frame.views = {View::position};
+            base.shading = ShadingMethod::split_sum;  // the configurations add to it
             std::vector<float> reference;
             for (const Config& c : configs) {
                 RenderJob job = base;

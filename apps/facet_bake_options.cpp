@@ -34,7 +34,7 @@ cli::Parser make_parser() {
         .option("--irradiance-size", "N", "irradiance face size (default 32)")
         .option("--lut-size", "N", "BRDF LUT width and height (default 128)")
         .option("--lut-samples", "N", "GGX samples per LUT texel (default 2048)")
-        .flag("--lut-height-correlated", "LUT with the height-correlated Smith term instead of Schlick-GGX")
+        .option("--brdf", "gltf|thesis", "BRDF model of the LUT: glTF 2.0's (default) or the thesis' (renders must match)")
         .option("--width", "N", "width of a built-in environment (default 1024, height N/2)")
         .option("--max-env-width", "N", "downsample wider environment files to N x N/2 while reading them\n"
                                          "                          (default " + std::to_string(kDefaultMaxEnvironmentWidth) +
@@ -87,7 +87,11 @@ std::optional<BakeOptions> parse_bake_options(int argc, char** argv) {
     if (a.has("--irradiance-size")) o.irradiance.size = positive(a, "--irradiance-size", 1024);
     if (a.has("--lut-size")) o.lut.size = positive(a, "--lut-size", 4096);
     if (a.has("--lut-samples")) o.lut.sample_count = positive(a, "--lut-samples", 1 << 20);
-    if (a.has("--lut-height-correlated")) o.lut.visibility = LutVisibility::height_correlated;
+    if (a.has("--brdf")) {
+        const auto brdf = parse_brdf_model(a.get("--brdf"));
+        if (!brdf) throw std::invalid_argument("--brdf: expected gltf or thesis, got '" + a.get("--brdf") + "'");
+        o.lut.brdf = *brdf;
+    }
     if (a.has("--max-env-width")) o.max_env_width = positive(a, "--max-env-width", int(kMaxEnvironmentSide) / 4);
     if (a.has("--width")) o.sky_width = positive(a, "--width", 16384);
     else o.sky_width = std::min(o.sky_width, std::max(2u, o.max_env_width & ~1u));

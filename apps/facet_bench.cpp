@@ -2,7 +2,8 @@
 // environment several times (--force, fresh process each time) and reports the median
 // GPU time of every pass (timestamp queries, from bake.json) and of the whole bake, and
 // the median wall time, as a table on stdout and optionally CSV. `render` measures
-// frames of the forward renderer (apps/bench_render.h).
+// frames of the forward renderer (apps/bench_render.h). `accuracy` measures the final
+// image against the exact integral of its BRDF model (apps/bench_accuracy.h).
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -16,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_accuracy.h"
 #include "bench_render.h"
 #include "bench_sweep.h"
 #include "cli.h"
@@ -61,6 +63,8 @@ bool parse_bake_json(const std::string& text, Run& run) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // accuracy takes facet-render's options (its own parser).
+    if (argc > 1 && std::string(argv[1]) == "accuracy") return facet::run_accuracy(argc, argv);
     std::optional<facet::BenchOptions> options;
     try {
         options = facet::parse_bench_options(argc, argv);

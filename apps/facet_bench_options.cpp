@@ -1,8 +1,11 @@
 #include "facet_bench_options.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <stdexcept>
 
 #include "light_spec.h"
+#include "render_options.h"
 #include "shader_cache.h"
 
 namespace facet {
@@ -29,7 +32,8 @@ void add_sweep_options(cli::Parser& parser) {
 }  // namespace
 
 std::optional<BenchOptions> parse_bench_options(int argc, char** argv) {
-    cli::Parser parser(program, "bake [ENV...] [options] | render [options] | sweep [ENV...] [options]",
+    cli::Parser parser(program,
+                       "bake [ENV...] [options] | render [options] | sweep [ENV...] [options] | accuracy [options]",
                        "bake: benchmarks facet-bake with its default settings: every ENV (default:\n"
                        "builtin:sky) is baked --runs times; medians of per-pass GPU time\n"
                        "(timestamp queries) and wall time are printed. Extra facet-bake options\n"
@@ -38,7 +42,9 @@ std::optional<BenchOptions> parse_bench_options(int argc, char** argv) {
                        "median GPU time of every pass and of the frame, and the wall time per frame.\n"
                        "sweep: every IBL method and parameter and the final image against the\n"
                        "reference mode, on each ENV (default builtin:sky): time and error against\n"
-                       "brute-force truth, to sweep.csv/json; scripts/chart.py draws the charts.");
+                       "brute-force truth, to sweep.csv/json; scripts/chart.py draws the charts.\n"
+                       "accuracy: the final image against the exact integral of its BRDF model, per\n"
+                       "roughness x metalness group (see facet-bench accuracy --help).");
     parser.option("--runs", "N", "bakes per environment (default 5)")
         .option("--bake", "PATH", "the facet-bake program (default: next to facet-bench)")
         .option("--bake-args", "ARGS", "more arguments for facet-bake, e.g. \"--specular filtered\"")
@@ -51,7 +57,7 @@ std::optional<BenchOptions> parse_bench_options(int argc, char** argv) {
     if (parser.answered_help_or_version(a, FACET_VERSION)) return std::nullopt;
     if (a.positional.empty() ||
         (a.positional[0] != "bake" && a.positional[0] != "render" && a.positional[0] != "sweep"))
-        throw std::invalid_argument("the first argument must be the benchmark: bake, render or sweep");
+        throw std::invalid_argument("the first argument must be the benchmark: bake, render, sweep or accuracy");
     if (a.positional[0] == "render" && a.positional.size() > 1)
         throw std::invalid_argument("render takes no positional arguments (use --model and --env)");
     o.benchmark = a.positional[0];
@@ -73,6 +79,71 @@ RenderBenchOptions parse_render_bench_options(const cli::Parsed& a) {
         if (!light) throw std::invalid_argument(light.error().message);
         job.extra_lights.push_back(*light);
     }
+    return o;
+}
+
+std::optional<AccuracyOptions> parse_accuracy_options(int argc, char** argv) {
+    cli::Parser parser(program, "accuracy [options]",
+                       "Renders the model (default builtin:spheres, default camera, no skybox) under each\n"
+                       "--env (comma-separated; default builtin:sky) and compares every group of pixels\n"
+                       "(n.v > 0.3, roughness >= 0.2; roughness bands [0.2,0.4) [0.4,0.6) [0.6,0.8)\n"
+                       "[0.8,1] x dielectric/metal) with the double-precision sum of the frame's BRDF\n"
+                       "model (--brdf) over every environment texel: mean and max of |lum(render) -\n"
+                       "lum(truth)| / lum(truth), the signed mean, the worst group and the forward\n"
+                       "pass's wall time (median). Renderer and truth read the same texels: files are\n"
+                       "box-filtered to --env-width (a power-of-two factor; default 512 here) and\n"
+                       "built-in environments are computed at that width.");
+    add_render_options(parser);
+    parser.option("--size", "WxH", "accuracy: image size (default 1280x720; same as --width/--height)")
+        .option("--pixels", "N", "accuracy: pixels the truth is computed for, spread evenly (default 4000)")
+        .option("--runs", "N", "accuracy: frames timed, median (default 3)")
+        .option("--json", "FILE", "accuracy: also write the tables as JSON")
+        .flag("--reference", "accuracy: measure the reference mode's image (Monte Carlo, 1% noise)")
+        .option("--truth-brdf", "gltf|thesis[,...]",
+                "accuracy: the BRDF model(s) of the truth (default: the frame's, --brdf)");
+    const cli::Parsed a = parser.parse(argc, argv);
+    if (parser.answered_help_or_version(a, FACET_VERSION)) return std::nullopt;
+    if (a.positional.size() != 1 || a.positional[0] != "accuracy")
+        throw std::invalid_argument("accuracy takes no positional arguments (use --env E1,E2,...)");
+    AccuracyOptions o;
+    parse_render_options(a, o.job);
+    o.job.shader_dir = shader_dir_from_environment();
+    if (a.has("--size")) {
+        unsigned w = 0, h = 0;
+        char extra;
+        if (std::sscanf(a.get("--size").c_str(), "%ux%u%c", &w, &h, &extra) != 2 || w < 1 || h < 1 || w > 16384 ||
+            h > 16384)
+            throw std::invalid_argument("--size: expected WxH (1..16384 each), got '" + a.get("--size") + "'");
+        o.job.frame.width = w;
+        o.job.frame.height = h;
+    }
+    // --env-width is the render options' (checked there); its default here is 512.
+    o.env_width = a.has("--env-width") ? o.job.env_width : 512;
+    o.job.env_width = o.env_width;
+    if (a.has("--pixels")) o.max_pixels = uint32_t(cli::parse_int(a.get("--pixels"), "--pixels", 1, 1 << 24));
+    if (a.has("--runs")) o.runs = cli::parse_int(a.get("--runs"), "--runs", 1, 100);
+    o.json = a.get("--json");
+    o.reference = a.has("--reference");
+    if (a.has("--json") && o.json.empty()) throw std::invalid_argument("--json needs a file name");
+    size_t start = 0;
+    const std::string list = a.get("--env", "builtin:sky");
+    while (start <= list.size()) {
+        const size_t comma = std::min(list.find(',', start), list.size());
+        const std::string name = list.substr(start, comma - start);
+        if (name.empty()) throw std::invalid_argument("--env: empty entry in '" + list + "'");
+        if (name == "none") throw std::invalid_argument("--env: accuracy needs an environment, not 'none'");
+        o.envs.push_back(name);
+        start = comma + 1;
+    }
+    for (size_t begin = 0, end; a.has("--truth-brdf") && begin <= a.get("--truth-brdf").size(); begin = end + 1) {
+        const std::string list = a.get("--truth-brdf");
+        end = std::min(list.find(',', begin), list.size());
+        const auto model = parse_brdf_model(list.substr(begin, end - begin));
+        if (!model) throw std::invalid_argument("--truth-brdf: expected gltf or thesis (comma-separated), got '" + list + "'");
+        o.truth_models.push_back(*model);
+    }
+    if (o.truth_models.empty()) o.truth_models = {o.job.frame.brdf};
+    if (!o.job.ibl_dir.empty()) throw std::invalid_argument("--ibl: accuracy bakes each --env itself");
     return o;
 }
 

@@ -38,4 +38,22 @@ struct SweepOptions {
 // Throws std::invalid_argument naming the option.
 SweepOptions parse_sweep_options(const cli::Parsed& args);
 
+// facet-bench accuracy: the final image of a scene (default builtin:spheres) under each
+// environment against the double-precision truth of the frame's BRDF model, per
+// roughness x metalness group (reference/final_image_accuracy.h). The render options are
+// facet-render's (apps/render_options.h); --env takes a comma-separated list.
+struct AccuracyOptions {
+    RenderJob job;                  // job.env: the first environment (each is set in turn)
+    std::vector<std::string> envs;  // default builtin:sky
+    uint32_t env_width = 512;       // renderer and truth both use the environment at this width
+    uint32_t max_pixels = 4000;     // truth budget per environment
+    int runs = 3;                   // frames timed (median)
+    std::string json;               // also write the tables here
+    bool reference = false;         // measure the reference mode's image instead of the frame's
+    std::vector<BrdfModel> truth_models;  // default: the frame's (job.frame.brdf)
+};
+// Nothing when --help or --version was answered; throws std::invalid_argument naming
+// the option. argv[1] is "accuracy".
+std::optional<AccuracyOptions> parse_accuracy_options(int argc, char** argv);
+
 }  // namespace facet

@@ -76,7 +76,7 @@ std::string describe(const Options& o, const RenderSession& session, const Rende
     j.value("exposure", double(f.display.exposure)).value("tonemap", tonemap_name(f.display.tonemap));
     j.value("gamma", f.display.gamma > 0 ? std::to_string(f.display.gamma) : std::string("sRGB"));
     j.value("msaa_samples", f.samples).value("skybox", f.skybox && baked != nullptr);
-    j.value("smith", f.height_correlated ? "height-correlated (glTF)" : "Schlick-GGX k = (r+1)^2/8");
+    j.value("brdf", brdf_model_name(f.brdf));
     j.begin_array("environment_lights");
     for (const DiskLight& d : f.environment_lights) {
         j.begin_object();
@@ -87,6 +87,12 @@ std::string describe(const Options& o, const RenderSession& session, const Rende
     }
     j.end_array();
     j.value("multiscatter", f.multiscatter).value("specular_lookup", f.dominant_direction ? "dominant" : "mirror");
+    const ShadingChoice& shading = session.shading();
+    j.begin_object("shading")
+        .value("requested", shading_method_name(shading.requested))
+        .value("method", shading_method_name(shading.method))
+        .value("reason", shading.reason)
+        .end_object();
     j.value("lights", uint32_t(f.lights.size()));
     if (o.reference)
         j.begin_object("reference").value("samples_per_pixel", stats.samples).value("noise", stats.noise)

@@ -42,7 +42,12 @@ void add_render_options(cli::Parser& p) {
                     "                          [inner=DEG] [outer=DEG]'")
         .flag("--no-skybox", "black background instead of the environment")
         .option("--samples", "N", "MSAA samples: 1, 2, 4 (default) or 8")
-        .flag("--height-correlated", "glTF's height-correlated Smith term for lights (default Schlick-GGX)")
+        .option("--brdf", "gltf|thesis",
+                "BRDF model: glTF 2.0's (default) or the thesis' Cook-Torrance (Schlick-GGX,\n"
+                "                          kd = (1 - F)(1 - metalness)); the bake's LUT must be for the same one")
+        .option("--shading", "METHOD",
+                "environment lighting: auto (default: chosen per environment, see NAME.json), split-sum,\n"
+                "                          dominant, lights, lights+dominant")
         .flag("--extract-lights", "take suns and lamps out of the environment and shade them as disk lights\n"
                                   "                          with the full BRDF (the rest goes through the split sum)")
         .flag("--multiscatter", "energy compensation for multiple scattering (Kulla-Conty; needs --env)")
@@ -114,7 +119,11 @@ void parse_render_options(const cli::Parsed& a, RenderJob& j) {
         if (n != 1 && n != 2 && n != 4 && n != 8) throw std::invalid_argument("--samples must be 1, 2, 4 or 8");
         j.frame.samples = uint32_t(n);
     }
-    j.frame.height_correlated = a.has("--height-correlated");
+    if (a.has("--brdf")) {
+        const auto brdf = parse_brdf_model(a.get("--brdf"));
+        if (!brdf) throw std::invalid_argument("--brdf: expected gltf or thesis, got '" + a.get("--brdf") + "'");
+        j.frame.brdf = *brdf;
+    }
     j.frame.multiscatter = a.has("--multiscatter");
     j.extract_lights = a.has("--extract-lights");
     if (a.has("--specular-dir")) {
@@ -122,6 +131,17 @@ void parse_render_options(const cli::Parsed& a, RenderJob& j) {
         if (d != "mirror" && d != "dominant")
             throw std::invalid_argument("--specular-dir: expected mirror or dominant, got '" + d + "'");
         j.frame.dominant_direction = d == "dominant";
+        // Alone, --specular-dir names a method (mirror: the plain split sum).
+        if (!j.extract_lights) j.shading = d == "dominant" ? ShadingMethod::dominant : ShadingMethod::split_sum;
+    }
+    if (a.has("--shading")) {
+        if (a.has("--extract-lights") || a.has("--specular-dir"))
+            throw std::invalid_argument("--shading names the whole method: leave out --extract-lights and --specular-dir");
+        const auto method = parse_shading_method(a.get("--shading"));
+        if (!method)
+            throw std::invalid_argument("--shading: expected one of " + std::string(shading_method_names()) + ", got '" +
+                                        a.get("--shading") + "'");
+        j.shading = *method;
     }
     if (a.has("--ibl-intensity")) j.ibl_intensity = number_option(a, "--ibl-intensity", 0.0f, 1e6f);
     if (a.has("--max-env-width"))

@@ -147,7 +147,7 @@ Result<Budget> choose_within_budget(Context& context, ProgramCache& programs, co
                 settings.lut = s;
                 auto baked = measure.bake(env, settings, "lut", stop);
                 if (!baked) return baked.error();
-                const ErrorStats stats = lut_error(*baked, s.visibility == LutVisibility::height_correlated);
+                const ErrorStats stats = lut_error(*baked, s.brdf == BrdfModel::gltf);
                 return std::pair{stats_of(stats), baked->gpu_ms};
             },
             progress);

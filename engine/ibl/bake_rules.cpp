@@ -41,13 +41,13 @@ std::string bake_key(const EnvironmentSource& s, const BakeSettings& b) {
                              double(o.irradiance.lowmip_size), double(o.irradiance.sh9_windowing),
                              double(int(o.specular.method)), double(o.specular.sample_count),
                              o.specular.automatic_convolve_from, double(o.specular.min_roughness),
-                             double(o.lut.size), double(o.lut.sample_count), double(int(o.lut.visibility)),
+                             double(o.lut.size), double(o.lut.sample_count), double(int(o.lut.brdf)),
                              b.target_error, double(b.roughness_min), double(b.roughness_max),
                              double(o.want_irradiance), double(o.want_specular), double(o.want_lut),
                              double(b.format), double(b.extract_lights),
                              b.extraction.min_ratio_to_median, b.extraction.min_ratio_to_peak,
                              b.extraction.max_solid_angle, b.extraction.min_power_fraction,
-                             double(b.extraction.max_lights)};
+                             double(b.extraction.max_lights), b.extraction.max_region_solid_angle};
     h.add(values, sizeof values);
     return h.hex();
 }

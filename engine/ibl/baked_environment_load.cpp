@@ -253,8 +253,9 @@ Result<BakedEnvironment> load_dir(Context& context, const std::string& dir, cons
         s.want_lut = true;
         s.lut.size = A::lut(out).desc().width;
         s.lut.sample_count = lut.count("samples");
-        s.lut.visibility = lut.text("visibility") == "smith height-correlated" ? LutVisibility::height_correlated
-                                                                              : LutVisibility::smith_schlick_ggx;
+        const auto brdf = parse_brdf_model(lut.text("brdf"));
+        if (!brdf) throw Missing{"brdf_lut.brdf (gltf or thesis; a bake older than the BRDF models must be made again)"};
+        s.lut.brdf = *brdf;
     }
     const Reader lights = root.child("lights");
     meta.light_split_level = lights.count("split_level");

@@ -121,9 +121,9 @@ std::string bake_json(const BakedEnvironment& b) {
         j.begin_object("brdf_lut");
         write_image_entry(j, "brdf_lut.ktx2", *lut);
         j.value("samples", s.lut.sample_count)
-            .value("visibility", s.lut.visibility == LutVisibility::height_correlated ? "smith height-correlated"
-                                                                                    : "smith schlick-ggx k = r^2/2")
-            .value("channels", "R = A (scale), G = B (bias), B = E_avg (multiscatter)")
+            .value("brdf", brdf_model_name(s.lut.brdf))
+            .value("visibility", s.lut.brdf == BrdfModel::gltf ? "smith height-correlated" : "smith schlick-ggx k = r^2/2")
+            .value("channels", "R = A (scale), G = B (bias), B = E_avg (multiscatter), A = mean (1 - v.h)^5 (diffuse)")
             .end_object();
     }
     j.begin_object("lights")

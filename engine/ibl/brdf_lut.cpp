@@ -9,8 +9,8 @@ Result<ImageHandle> add_brdf_lut_passes(RenderGraph& graph, ProgramCache& progra
                                         ImageHandle lut) {
     if (settings.sample_count == 0) return Error{"BRDF LUT: sample count must be at least 1"};
     struct Params {
-        uint32_t sample_count, height_correlated;
-    } params{settings.sample_count, settings.visibility == LutVisibility::height_correlated ? 1u : 0u};
+        uint32_t sample_count, brdf;
+    } params{settings.sample_count, static_cast<uint32_t>(settings.brdf)};
     auto split_sum = programs.compute("ibl/brdf_lut.comp");
     if (!split_sum) return split_sum.error();
     auto energy = programs.compute("ibl/brdf_lut_energy.comp");

@@ -11,6 +11,49 @@ namespace {
 
 double luminance(const float* t) { return facet::luminance(t[0], t[1], t[2]); }
 
+// Splits a region's texels into `pieces` compact parts by k-means on their directions
+// (weighted by the power above the fill plus their solid angle, so that every texel
+// belongs somewhere), started from texels spread by farthest-point selection.
+std::vector<std::vector<uint32_t>> split_region(const std::vector<uint32_t>& texels, std::span<const float> rgba,
+                                                const glm::dvec3& fill, uint32_t w, uint32_t h, uint32_t pieces) {
+    if (pieces <= 1 || texels.size() <= pieces) return {texels};
+    std::vector<glm::dvec3> dir(texels.size());
+    std::vector<double> weight(texels.size());
+    for (size_t t = 0; t < texels.size(); ++t) {
+        const uint32_t i = texels[t];
+        dir[t] = equirect_texel_direction(i % w, i / w, w, h);
+        const glm::dvec3 excess = glm::max(glm::dvec3(rgba[i * 4], rgba[i * 4 + 1], rgba[i * 4 + 2]) - fill, 0.0);
+        const double omega = equirect_texel_solid_angle(i / w, w, h);
+        weight[t] = (facet::luminance(excess.x, excess.y, excess.z) + 1e-6) * omega;
+    }
+    std::vector<glm::dvec3> centre{dir[size_t(std::max_element(weight.begin(), weight.end()) - weight.begin())]};
+    while (centre.size() < pieces) {
+        size_t farthest = 0;
+        double far_dot = 2;
+        for (size_t t = 0; t < dir.size(); ++t) {
+            double nearest = -2;
+            for (const glm::dvec3& c : centre) nearest = std::max(nearest, glm::dot(dir[t], c));
+            if (nearest < far_dot) far_dot = nearest, farthest = t;
+        }
+        centre.push_back(dir[farthest]);
+    }
+    std::vector<uint32_t> owner(texels.size(), 0);
+    for (int iteration = 0; iteration < 12; ++iteration) {
+        for (size_t t = 0; t < dir.size(); ++t) {
+            double best = -2;
+            for (uint32_t c = 0; c < pieces; ++c)
+                if (glm::dot(dir[t], centre[c]) > best) best = glm::dot(dir[t], centre[c]), owner[t] = c;
+        }
+        std::vector<glm::dvec3> sum(pieces, glm::dvec3(0.0));
+        for (size_t t = 0; t < dir.size(); ++t) sum[owner[t]] += weight[t] * dir[t];
+        for (uint32_t c = 0; c < pieces; ++c)
+            if (glm::length(sum[c]) > 0) centre[c] = glm::normalize(sum[c]);
+    }
+    std::vector<std::vector<uint32_t>> out(pieces);
+    for (size_t t = 0; t < texels.size(); ++t) out[owner[t]].push_back(texels[t]);
+    return out;
+}
+
 }  // namespace
 
 LightExtraction extract_lights(std::span<const float> rgba, uint32_t w, uint32_t h,
@@ -74,14 +117,19 @@ LightExtraction extract_lights(std::span<const float> rgba, uint32_t w, uint32_t
         const Region& r = regions[k];
         const double fraction = r.power / total_power;
         if (fraction < settings.min_power_fraction) break;  // sorted: the rest are smaller
-        if (r.solid_angle > settings.max_solid_angle) {
+        if (r.solid_angle > settings.max_region_solid_angle) {
             out.notes.push_back("a bright region of " + std::to_string(r.solid_angle) +
                                 " sr is too wide to be a light; it stays in the map");
             continue;
         }
-        if (out.lights.size() >= settings.max_lights) {
-            out.notes.push_back("more than " + std::to_string(settings.max_lights) + " lights; the rest stay in the map");
-            break;
+        // Regions wider than one light (a softbox, a window, a low sun's glow) become
+        // several disks, one per piece of at most max_solid_angle.
+        const uint32_t pieces = uint32_t(std::ceil(r.solid_angle / settings.max_solid_angle - 1e-9));
+        if (out.lights.size() + pieces > settings.max_lights) {
+            out.notes.push_back("a bright region of " + std::to_string(r.solid_angle) + " sr needs " +
+                                std::to_string(pieces) + " lights, over the limit of " +
+                                std::to_string(settings.max_lights) + "; it stays in the map");
+            continue;
         }
         // The fill: the mean of the texels just outside the region (the surrounding sky).
         glm::dvec3 fill(0.0);
@@ -99,25 +147,31 @@ LightExtraction extract_lights(std::span<const float> rgba, uint32_t w, uint32_t
                 }
         }
         if (ring_weight > 0) fill /= ring_weight;
-        // Power above the fill, its direction (power-weighted) and solid angle.
-        glm::dvec3 power(0.0), centroid(0.0);
-        for (uint32_t i : r.texels) {
-            const double omega = equirect_texel_solid_angle(i / w, w, h);
-            const glm::dvec3 excess = glm::max(glm::dvec3(rgba[i * 4], rgba[i * 4 + 1], rgba[i * 4 + 2]) - fill, 0.0);
-            power += excess * omega;
-            centroid += facet::luminance(excess.x, excess.y, excess.z) * omega *
-                        equirect_texel_direction(i % w, i / w, w, h);
-            for (int c = 0; c < 3; ++c) out.residual[i * 4 + size_t(c)] = float(fill[c]);
+        for (const std::vector<uint32_t>& piece : split_region(r.texels, rgba, fill, w, h, pieces)) {
+            // Power above the fill, its direction (power-weighted) and solid angle.
+            glm::dvec3 power(0.0), centroid(0.0);
+            double solid_angle = 0;
+            for (uint32_t i : piece) {
+                const double omega = equirect_texel_solid_angle(i / w, w, h);
+                const glm::dvec3 excess = glm::max(glm::dvec3(rgba[i * 4], rgba[i * 4 + 1], rgba[i * 4 + 2]) - fill, 0.0);
+                power += excess * omega;
+                solid_angle += omega;
+                centroid += (facet::luminance(excess.x, excess.y, excess.z) + 1e-12) * omega *
+                            equirect_texel_direction(i % w, i / w, w, h);
+                for (int c = 0; c < 3; ++c) out.residual[i * 4 + size_t(c)] = float(fill[c]);
+            }
+            if (piece.empty() || glm::length(centroid) <= 0) continue;
+            const double piece_fraction = facet::luminance(power.x, power.y, power.z) / total_power;
+            DiskLight light;
+            light.direction = glm::vec3(glm::normalize(centroid));
+            light.solid_angle = float(solid_angle);
+            light.angular_radius = float(std::acos(std::clamp(1.0 - solid_angle / (2 * pi), -1.0, 1.0)));
+            light.radiance = glm::vec3(power / solid_angle);
+            light.texels = uint32_t(piece.size());
+            light.power_fraction = pieces == 1 ? fraction : piece_fraction;
+            out.extracted_power_fraction += light.power_fraction;
+            out.lights.push_back(light);
         }
-        DiskLight light;
-        light.direction = glm::vec3(glm::normalize(centroid));
-        light.solid_angle = float(r.solid_angle);
-        light.angular_radius = float(std::acos(std::clamp(1.0 - r.solid_angle / (2 * pi), -1.0, 1.0)));
-        light.radiance = glm::vec3(power / r.solid_angle);
-        light.texels = uint32_t(r.texels.size());
-        light.power_fraction = fraction;
-        out.extracted_power_fraction += fraction;
-        out.lights.push_back(light);
     }
     return out;
 }

@@ -83,7 +83,7 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     define_if(blend, "ALPHA_BLEND");
     define_if(m.double_sided, "DOUBLE_SIDED");
     define_if(ibl, "USE_IBL");
-    define_if(settings.height_correlated, "HEIGHT_CORRELATED");
+    define_if(settings.brdf == BrdfModel::thesis, "BRDF_THESIS");
     define_if(ibl && settings.multiscatter, "MULTISCATTER");
     define_if(ibl && settings.dominant_direction, "DOMINANT_DIRECTION");
     defines.push_back({"VIEW", std::to_string(int(view))});

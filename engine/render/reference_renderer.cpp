@@ -123,7 +123,7 @@ Result<ReferenceStats> ReferenceRenderer::accumulate(const ReferenceSurface& sur
         ImageHandle acc = graph.import_image("accumulation", {accumulation_->handle(), desc, storage, storage});
         ImageHandle mom = graph.import_image("moments", {moments_->handle(), desc, storage, storage});
         Params params{glm::vec4(frame.camera.position, 1.0f),
-                      glm::uvec4(env_width_, env_height_, uint32_t(lights.size()), frame.height_correlated ? 1u : 0u),
+                      glm::uvec4(env_width_, env_height_, uint32_t(lights.size()), frame.brdf == BrdfModel::thesis ? 1u : 0u),
                       glm::uvec4(count, stats.samples, 0u, 0u), glm::vec4(env_intensity_, 0.0f, 0.0f, 0.0f)};
         graph.add_compute_pass("reference batch", [&](PassBuilder& b) {
             for (ImageHandle h : inputs) b.sample(h);

@@ -70,7 +70,9 @@ Result<BakedEnvironment> bake_for_session(Context& context, RenderSession::State
     }
     BakeSettings settings;
     settings.ibl = ibl_settings_for_scene(job.ibl, scene_needs(s.scene), job.frame.multiscatter);
+    settings.ibl.lut.brdf = job.frame.brdf;  // the frame's model decides the LUT's
     settings.extract_lights = job.extract_lights;
+    settings.extraction = job.extraction;
     settings.preview = false;  // environment.png: nothing here shows or saves it
     BakeCallbacks callbacks;
     callbacks.progress = say;
@@ -120,10 +122,12 @@ Result<BakedEnvironment> bake_for_session(Context& context, RenderSession::State
 
 }  // namespace
 
-Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, const RenderJob& job, Scene scene,
-                                                             const ProgressFn& progress) {
+Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, const RenderJob& requested,
+                                                             Scene scene, const ProgressFn& progress) {
     auto s = std::make_unique<State>();
     s->context = &context;
+    s->shading = resolve_shading(requested);
+    const RenderJob& job = s->shading.job;
     s->job = job;
     auto say = [&](const std::string& line) {
         if (progress) progress(line);
@@ -183,6 +187,12 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
         if (!baked) return baked.error();
         s->baked = std::move(baked).value();
         const BakeMetadata& m = s->baked->metadata();
+        if (m.settings.want_lut && m.settings.lut.brdf != s->frame.brdf)
+            return Error{(saved_bake ? job.ibl_dir : std::string("the bake")) + ": its BRDF LUT is for the " +
+                         brdf_model_name(m.settings.lut.brdf) + " BRDF model, the render asks for " +
+                         brdf_model_name(s->frame.brdf) + " (--brdf): bake again with --brdf " +
+                         brdf_model_name(s->frame.brdf) + " or render with --brdf " +
+                         brdf_model_name(m.settings.lut.brdf)};
         s->frame.environment_lights = s->baked->lights();
         s->frame.environment_light_level = m.light_split_level;
         if (job.extract_lights && !saved_bake) {
@@ -190,6 +200,9 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
                 std::to_string(int(std::lround(100 * m.extracted_power_fraction))) + "% of its power");
             for (const std::string& note : m.extraction_notes) say("light extraction: " + note);
         }
+        finish_shading_choice(s->shading, s->baked->lights().size(), m.extracted_power_fraction);
+        s->frame.dominant_direction = s->shading.job.frame.dominant_direction;
+        say("shading: " + std::string(shading_method_name(s->shading.choice.method)) + " (" + s->shading.choice.reason + ")");
         for (const std::string& note : m.format_notes) say(note);
         s->ibl_settings = m.settings;
         s->warnings = m.warnings;

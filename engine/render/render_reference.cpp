@@ -38,6 +38,7 @@ ProgramCache& RenderSession::programs() { return *state_->programs; }
 std::optional<IblInputs> RenderSession::import_baked(RenderGraph& graph) { return facet::import_ibl(*state_, graph); }
 
 const std::vector<std::string>& RenderSession::warnings() const { return state_->warnings; }
+const ShadingChoice& RenderSession::shading() const { return state_->shading.choice; }
 
 Result<size_t> RenderSession::reload_shaders() { return state_->programs->reload(); }
 

@@ -11,6 +11,7 @@
 #include <facet/render/render_job.h>
 #include <facet/ibl/baked_environment.h>
 #include <facet/shader/program_cache.h>
+#include "render/shading_choice.h"
 
 namespace facet {
 
@@ -36,6 +37,7 @@ struct RenderSession::State {
     std::vector<std::string> warnings;    // IBL methods used outside their domain
     int textures_on = 7;                  // bits: albedo, metallic-roughness, occlusion textures used
     FrameSettings frame;
+    ResolvedShading shading;
 };
 
 inline const ResourceState readable{VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,

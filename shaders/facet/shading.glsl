@@ -6,67 +6,103 @@
 // share/facet/shaders on the include path. Every function takes its textures and values as
 // parameters, never a global binding, so a host passes its own.
 //
-// The model is the thesis' Cook-Torrance (Junakovic, "Fizikalno temeljen model ostvarivanja
-// prikaza", Zagreb 2019): GGX D, Schlick F on h.v, Smith with Schlick-GGX (k = (r+1)^2/8
-// for punctual lights, r^2/2 for the environment) or glTF's height-correlated term, Lambert
-// diffuse with kd = (1 - F)(1 - metallic). The environment is the split sum (Karis 2013):
-// irradiance (E / pi) for the diffuse part, the prefiltered cube at
-// lod = roughness x (levels - 1) times the LUT's F0 A + B for the specular part.
-// Each composition exists here once: diffuse + specular for a light from one direction
-// (facet_reflect_light), for a disk (facet_disk_light), for the environment
+// Two BRDF models (design.md, "BRDF models"), chosen per surface (FacetSurface.brdf):
+// - FACET_BRDF_GLTF: glTF 2.0 appendix B: GGX D, height-correlated Smith visibility,
+//   dielectric = fresnel_mix(F0 0.04, Lambert, specular) with Schlick F on v.h, metal =
+//   conductor_fresnel(baseColor, specular), mixed by metalness.
+// - FACET_BRDF_THESIS: the thesis' Cook-Torrance (Junakovic, "Fizikalno temeljen model
+//   ostvarivanja prikaza", Zagreb 2019): GGX D, Schlick F on h.v, Smith with Schlick-GGX
+//   (k = (r+1)^2/8 for punctual lights, r^2/2 for the environment), Lambert diffuse with
+//   kd = (1 - F)(1 - metallic), F0 = mix(0.04, albedo, metallic).
+// The environment is the split sum (Karis 2013): irradiance (E / pi) for the diffuse part,
+// the prefiltered cube at lod = roughness x (levels - 1) times the model's LUT (A, B) for
+// the specular part, the diffuse weighted by the cosine-weighted mean Fresnel (the LUT's
+// fourth channel). Each composition exists here once: diffuse + specular for a light from
+// one direction (facet_reflect_light), for a disk (facet_disk_light), for the environment
 // (facet_environment_light).
 #include "brdf.glsl"
 
+const uint FACET_BRDF_GLTF = 0u;
+const uint FACET_BRDF_THESIS = 1u;
+
 // What the shading needs of a surface point (facet_surface fills the derived terms).
 struct FacetSurface {
+    uint brdf;              // FACET_BRDF_GLTF or FACET_BRDF_THESIS
     vec3 n;                 // unit shading normal, world space
     vec3 albedo;            // linear base colour
     float metallic;         // 0..1
     float roughness;        // perceptual, 0..1; alpha = roughness^2
-    vec3 F0;                // reflectance at normal incidence
-    float specular_weight;  // KHR_materials_specular's factor for the dielectric part (1: none)
+    vec3 F0;                // reflectance at normal incidence, mix(dielectric F0, albedo, metallic)
+    float specular_weight;  // the specular factor for the dielectric part, mixed to 1 for metals
+    float dielectric_f0;    // the dielectric part's F0 (0.04 for ior 1.5)
+    float specular_factor;  // KHR_materials_specular's factor for the dielectric part (1: none)
     float occlusion;        // ambient occlusion, 0..1: scales environment and disk lights only
 };
 
-// glTF's metallic-roughness material: F0 = mix(dielectric F0, albedo, metallic); metals
-// ignore the dielectric specular factor.
-FacetSurface facet_surface(vec3 n, vec3 albedo, float metallic, float roughness, float dielectric_f0,
+// glTF's metallic-roughness material under the model `brdf`.
+FacetSurface facet_surface(uint brdf, vec3 n, vec3 albedo, float metallic, float roughness, float dielectric_f0,
                            float specular_factor, float occlusion) {
     FacetSurface s;
+    s.brdf = brdf;
     s.n = n;
     s.albedo = albedo;
     s.metallic = metallic;
     s.roughness = roughness;
     s.F0 = mix(vec3(dielectric_f0), albedo, metallic);
     s.specular_weight = mix(specular_factor, 1.0, metallic);
+    s.dielectric_f0 = dielectric_f0;
+    s.specular_factor = specular_factor;
     s.occlusion = occlusion;
     return s;
 }
 
-// The specular term without F: D G / (4 n.l n.v) with Schlick-GGX of factor k, or D V
-// with glTF's height-correlated visibility when height_correlated (k unused).
-float facet_specular_dg(float NdotV, float NdotL, float NdotH, float roughness, float k, bool height_correlated) {
-    float D = D_GGX(NdotH, roughness);
-    if (height_correlated) return D * V_SmithGGXCorrelated(NdotV, NdotL, max(roughness * roughness, MIN_ALPHA));
-    float G = G_Smith(NdotV, NdotL, k);
-    return D * G / max(4.0 * NdotV * NdotL, 1e-8);
+// The Fresnel term of the specular lobe and the diffuse lobe's weight at v.h.
+// glTF: mix(specular x F(0.04), F(baseColor), metallic) and (1 - specular x F(0.04))
+// (1 - metallic); thesis: F(F0) (the specular weight scaling it) and (1 - F)(1 - metallic).
+void facet_fresnel(FacetSurface s, float VdotH, out vec3 F, out vec3 kd) {
+    float w = pow(clamp(1.0 - VdotH, 0.0, 1.0), 5.0);
+    if (s.brdf == FACET_BRDF_GLTF) {
+        float Fd = s.specular_factor * (s.dielectric_f0 + (1.0 - s.dielectric_f0) * w);
+        F = mix(vec3(Fd), s.albedo + (1.0 - s.albedo) * w, s.metallic);
+        kd = vec3((1.0 - Fd) * (1.0 - s.metallic));
+    } else {
+        F = s.specular_weight * (s.F0 + (1.0 - s.F0) * w);
+        kd = (1.0 - F) * (1.0 - s.metallic);
+    }
+}
+
+// The specular term without F, D G / (4 n.l n.v): glTF's height-correlated visibility,
+// or the thesis' Schlick-GGX with k_direct (punctual lights) or k_ibl (the environment).
+float facet_specular_dg(FacetSurface s, float NdotV, float NdotL, float NdotH, bool punctual) {
+    float D = D_GGX(NdotH, s.roughness);
+    if (s.brdf == FACET_BRDF_GLTF)
+        return D * V_SmithGGXCorrelated(NdotV, NdotL, max(s.roughness * s.roughness, MIN_ALPHA));
+    float k = punctual ? k_direct(s.roughness) : k_ibl(s.roughness);
+    return D * G_Smith(NdotV, NdotL, k) / max(4.0 * NdotV * NdotL, 1e-8);
+}
+
+// The Smith masking-shadowing term G of the model (the G view).
+float facet_geometry(FacetSurface s, float NdotV, float NdotL, bool punctual) {
+    if (s.brdf == FACET_BRDF_GLTF)
+        return 4.0 * NdotV * NdotL * V_SmithGGXCorrelated(NdotV, NdotL, max(s.roughness * s.roughness, MIN_ALPHA));
+    return G_Smith(NdotV, NdotL, punctual ? k_direct(s.roughness) : k_ibl(s.roughness));
 }
 
 // Radiance `incident` arriving along l (unit, towards the light) reflected towards v:
 // diffuse = kd albedo / pi * incident * n.l and specular = F D G / (4 n.l n.v) * incident
-// * n.l. Zero when l is below the surface. NdotV = clamp(n.v, 0, 1).
-void facet_reflect_light(FacetSurface s, vec3 v, float NdotV, vec3 l, vec3 incident, float k, bool height_correlated,
+// * n.l. Zero when l is below the surface. NdotV = clamp(n.v, 0, 1). `punctual` selects
+// the thesis' k for punctual lights (the glTF model has one visibility term).
+void facet_reflect_light(FacetSurface s, vec3 v, float NdotV, vec3 l, vec3 incident, bool punctual,
                          out vec3 diffuse, out vec3 specular) {
     diffuse = vec3(0.0);
     specular = vec3(0.0);
     float NdotL = dot(s.n, l);
     if (NdotL <= 0.0) return;
     vec3 h = normalize(v + l);
-    vec3 F = s.specular_weight * F_Schlick(clamp(dot(h, v), 0.0, 1.0), s.F0);
-    vec3 kd = (1.0 - F) * (1.0 - s.metallic);
+    vec3 F, kd;
+    facet_fresnel(s, clamp(dot(h, v), 0.0, 1.0), F, kd);
     diffuse = kd * s.albedo / PI * incident * NdotL;
-    specular = F * facet_specular_dg(NdotV, NdotL, clamp(dot(s.n, h), 0.0, 1.0), s.roughness, k, height_correlated) *
-               incident * NdotL;
+    specular = F * facet_specular_dg(s, NdotV, NdotL, clamp(dot(s.n, h), 0.0, 1.0), punctual) * incident * NdotL;
 }
 
 // Unit vectors t and b that make (t, b, n) a right-handed orthonormal frame around the
@@ -116,10 +152,25 @@ vec3 facet_punctual_incidence(FacetPunctualLight light, vec3 p, out vec3 l) {
     return light.intensity * attenuation;
 }
 
-// The split sum's LUT at (n.v, roughness): scale A, bias B, and the average albedo E_avg
-// (third channel; multiple scattering).
-vec3 facet_brdf_lut(sampler2D lut, float NdotV, float roughness) {
-    return texture(lut, vec2(NdotV, roughness)).rgb;
+// The split sum's LUT at (n.v, roughness), made for the surface's model: scale A, bias B,
+// the average albedo E_avg (multiple scattering) and the cosine-weighted mean of
+// (1 - v.h)^5 over the hemisphere (the diffuse lobe's Fresnel).
+vec4 facet_brdf_lut(sampler2D lut, float NdotV, float roughness) {
+    return texture(lut, vec2(NdotV, roughness));
+}
+
+// The specular lobe's directional albedo (the split sum's second factor) and the diffuse
+// lobe's mean weight under uniform light, from the LUT.
+void facet_lut_albedo(FacetSurface s, vec4 lut, out vec3 E, out vec3 kd) {
+    if (s.brdf == FACET_BRDF_GLTF) {
+        float Ed = s.specular_factor * (s.dielectric_f0 * lut.x + lut.y);
+        E = mix(vec3(Ed), s.albedo * lut.x + lut.y, s.metallic);
+        float Fd = s.specular_factor * (s.dielectric_f0 + (1.0 - s.dielectric_f0) * lut.w);
+        kd = vec3((1.0 - Fd) * (1.0 - s.metallic));
+    } else {
+        E = s.specular_weight * (s.F0 * lut.x + lut.y);
+        kd = (1.0 - s.specular_weight * (s.F0 + (1.0 - s.F0) * lut.w)) * (1.0 - s.metallic);
+    }
 }
 
 // The prefiltered cube holds roughness level / (levels - 1) at each level.
@@ -130,7 +181,7 @@ float facet_specular_lod(float roughness, float specular_levels) {
 // Multiple scattering for lights: single scattering loses 1 - E(mu) of the energy for
 // F0 = 1 (E = A + B); the lobe is scaled by 1 + F0 (1 / E - 1) (Turquin 2019). Multiply a
 // light's specular by it.
-vec3 facet_multiscatter_light_energy(vec3 F0, vec3 lut) {
+vec3 facet_multiscatter_light_energy(vec3 F0, vec4 lut) {
     return 1.0 + F0 * (1.0 / max(lut.x + lut.y, 1e-3) - 1.0);
 }
 
@@ -143,39 +194,45 @@ struct FacetDiskLight {
     vec3 radiance;
 };
 
-// The cap shaded with the full BRDF (the environment's, k = r^2/2) by a sum over 32
-// directions spread evenly over it (uniform in cos, golden-angle spiral). Lobes much
-// narrower than the cap cannot be resolved by 32 directions: there the cap acts as a
-// mirror image, L times the lobe's albedo (the LUT's F0 A + B) where R falls inside it,
-// faded over the lobe's width. Occlusion not applied.
-void facet_disk_light(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, vec3 lut, out vec3 diffuse,
+// The cap shaded with the full BRDF (the environment's k for the thesis' model) by a sum
+// over N directions spread evenly over it (uniform in cos, golden-angle spiral), N as the
+// lobe needs: one (the cap as a point source of its power) where the specular lobe is at
+// least four times wider than the cap, alpha >= 4 theta (D's curvature over the cap then
+// changes the sum by under 2%; the cosine lobe needs more only for caps over 0.1 radian),
+// 8 from alpha >= theta / 2 on, else 32. Lobes much narrower than the cap cannot be
+// resolved by 32 directions: there the cap acts as a mirror image, L times the lobe's
+// albedo (the LUT's F0 A + B) where R falls inside it, faded over the lobe's width.
+// Occlusion not applied.
+void facet_disk_light(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, vec4 lut, out vec3 diffuse,
                       out vec3 specular) {
     vec3 c = disk.direction;
     float cos_theta = disk.cos_radius, theta = disk.angular_radius;
     vec3 L = disk.radiance;
     vec3 t, b;
     facet_tangent_frame(c, t, b);
-    const uint N = 32u;
+    float alpha = max(s.roughness * s.roughness, MIN_ALPHA);
+    uint N = alpha >= 4.0 * theta ? 1u : (alpha >= 0.5 * theta ? 8u : 32u);
+    if (theta > 0.1) N = max(N, 8u);
     float omega = 2.0 * PI * (1.0 - cos_theta) / float(N);
-    float k = k_ibl(s.roughness);
     diffuse = vec3(0.0);
     vec3 sampled = vec3(0.0);
     for (uint i = 0u; i < N; ++i) {
-        float z = 1.0 - (float(i) + 0.5) / float(N) * (1.0 - cos_theta);
+        float z = N == 1u ? 1.0 : 1.0 - (float(i) + 0.5) / float(N) * (1.0 - cos_theta);
         float r = sqrt(max(0.0, 1.0 - z * z)), phi = float(i) * 2.39996323;
         vec3 l = t * (r * cos(phi)) + b * (r * sin(phi)) + c * z;
         vec3 d, sp;
-        facet_reflect_light(s, v, NdotV, l, vec3(1.0), k, false, d, sp);
+        facet_reflect_light(s, v, NdotV, l, vec3(1.0), false, d, sp);
         diffuse += d;
         sampled += sp;
     }
     diffuse *= L * omega;
     sampled *= L * omega;
-    float alpha = max(s.roughness * s.roughness, MIN_ALPHA);
     vec3 R = reflect(-v, s.n);
     float angle = acos(clamp(dot(R, c), -1.0, 1.0));
     float coverage = clamp((theta + alpha - angle) / (2.0 * alpha), 0.0, 1.0);
-    vec3 mirror = L * s.specular_weight * (s.F0 * lut.x + lut.y) * coverage;
+    vec3 E, kd;
+    facet_lut_albedo(s, lut, E, kd);
+    vec3 mirror = L * E * coverage;
     // 32 directions are about theta / 3 apart: the sum resolves lobes from alpha = theta / 2
     // on; below theta / 4 the mirror image holds.
     specular = mix(mirror, sampled, clamp((alpha - theta / 4.0) / (theta / 4.0), 0.0, 1.0));
@@ -200,31 +257,30 @@ struct FacetEnvironmentLight {
 // specular_map the GGX-prefiltered radiance with `specular_levels` levels, lut
 // facet_brdf_lut's value. multiscatter adds Kulla and Conty's multiple-scattering lobe (the
 // LUT's third channel); dominant_direction bends the lookup towards n for rough lobes.
-FacetEnvironmentLight facet_environment_light(FacetSurface s, vec3 v, float NdotV, vec3 lut, samplerCube irradiance_map,
+FacetEnvironmentLight facet_environment_light(FacetSurface s, vec3 v, float NdotV, vec4 lut, samplerCube irradiance_map,
                                               samplerCube specular_map, float specular_levels, float intensity,
                                               bool multiscatter, bool dominant_direction) {
     FacetEnvironmentLight env;
     env.specular = vec3(0.0);
-    // The split sum's directional albedo E = F0 A + B (Karis 2013).
-    vec3 E = s.specular_weight * (s.F0 * lut.x + lut.y);
+    // The split sum's directional albedo E = F0 A + B (Karis 2013) and the diffuse
+    // lobe's weight: the cosine-weighted mean of the model's (1 - F) over the hemisphere,
+    // which for Schlick's F depends on n.v alone (exact under uniform light).
+    vec3 E, kd;
+    facet_lut_albedo(s, lut, E, kd);
     env.irradiance = texture(irradiance_map, s.n).rgb * intensity;
-    vec3 E_ms = vec3(0.0);
     if (multiscatter) {
         // Kulla and Conty 2017: the multiple-scattering lobe f_ms = F_ms (1 - E(mu_o))
         // (1 - E(mu_i)) / (pi (1 - E_avg)), integrated against the environment with
         // (1 - E(mu_i)) replaced by its cosine-weighted mean 1 - E_avg, is
-        // F_ms (1 - E(mu_o)) times the irradiance (exact under uniform light).
+        // F_ms (1 - E(mu_o)) times the irradiance (exact under uniform light). The
+        // diffuse lobe keeps what both specular lobes leave.
         float e_single = lut.x + lut.y;
         vec3 f_avg = s.F0 + (1.0 - s.F0) / 21.0;
         vec3 f_ms = f_avg * f_avg * lut.z / (1.0 - f_avg * (1.0 - lut.z));
-        E_ms = s.specular_weight * f_ms * (1.0 - e_single);
+        vec3 E_ms = s.specular_weight * f_ms * (1.0 - e_single);
         env.specular += E_ms * env.irradiance * s.occlusion;
+        kd = min(kd, (1.0 - E - E_ms) * (1.0 - s.metallic));
     }
-    // The thesis' kd/ks split with F_SchlickRoughness, capped at 1 - E: at grazing angles
-    // on smooth dielectrics E exceeds F_SchlickRoughness by up to ~1%, and diffuse +
-    // specular must not reflect more than arrives.
-    vec3 F = s.specular_weight * F_SchlickRoughness(NdotV, s.F0, s.roughness);
-    vec3 kd = (multiscatter ? min(1.0 - F, 1.0 - E - E_ms) : min(1.0 - F, 1.0 - E)) * (1.0 - s.metallic);
     vec3 lookup = reflect(-v, s.n);
     if (dominant_direction) {
         // Rough lobes lean towards n (Lagarde and de Rousiers 2014, "Moving Frostbite to

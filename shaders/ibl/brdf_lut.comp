@@ -1,8 +1,10 @@
 #version 460
 // Split-sum BRDF LUT (Karis 2013): for NdotV = (x + 0.5) / W and roughness = (y + 0.5) / H,
 // R = A and G = B with  integral f_spec cos = F0 * A + B, the integral over the GGX lobe
-// estimated with N Hammersley samples of h ~ D(h) (n.h). Visibility: Smith with
-// Schlick-GGX k = r^2 / 2 (the thesis), or the height-correlated Smith term (glTF).
+// estimated with N Hammersley samples of h ~ D(h) (n.h). Visibility of the model: the
+// height-correlated Smith term (glTF) or Smith with Schlick-GGX k = r^2 / 2 (the thesis).
+// Alpha: W = the cosine-weighted mean of (1 - v.h)^5 over the hemisphere (the diffuse lobe's
+// Fresnel weight, independent of roughness), by N cosine-distributed Hammersley directions.
 #include "ibl/sampling.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -10,7 +12,7 @@ layout(binding = 0, rgba32f) uniform writeonly image2D lut;
 
 layout(push_constant) uniform Params {
     uint sample_count;
-    uint height_correlated;  // 0: G_Smith with k_ibl; 1: V_SmithGGXCorrelated
+    uint brdf;  // 0: glTF (V_SmithGGXCorrelated); 1: the thesis (G_Smith with k_ibl)
 } params;
 
 void main() {
@@ -37,7 +39,7 @@ void main() {
         if (NdotL <= 0.0 || VdotH <= 0.0) continue;
         float NdotH = H.z;
         // f cos / pdf with pdf(l) = D (n.h) / (4 v.h): the D and F terms cancel out.
-        float G_Vis = params.height_correlated != 0u
+        float G_Vis = params.brdf == 0u
                           ? 4.0 * V_SmithGGXCorrelated(NdotV, NdotL, alpha) * NdotL * VdotH / NdotH
                           : G_Smith(NdotV, NdotL, k) * VdotH / (NdotH * NdotV);
         G_Vis *= 2.0 * s;
@@ -47,5 +49,13 @@ void main() {
     }
     A /= float(params.sample_count);
     B /= float(params.sample_count);
-    imageStore(lut, texel, vec4(A, B, 0.0, 1.0));
+    float W = 0.0;
+    for (uint i = 0u; i < params.sample_count; ++i) {
+        vec2 xi = hammersley(i, params.sample_count);
+        float r = sqrt(xi.x), phi = 2.0 * PI * xi.y;
+        vec3 L = vec3(r * cos(phi), r * sin(phi), sqrt(max(0.0, 1.0 - xi.x)));
+        W += pow(clamp(1.0 - dot(V, normalize(V + L)), 0.0, 1.0), 5.0);
+    }
+    W /= float(params.sample_count);
+    imageStore(lut, texel, vec4(A, B, 0.0, W));
 }

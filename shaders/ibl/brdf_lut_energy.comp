@@ -18,6 +18,6 @@ void main() {
     float e_avg = 2.0 * sum / float(size.x);
     for (int x = 0; x < size.x; ++x) {
         vec4 t = imageLoad(lut, ivec2(x, row));
-        imageStore(lut, ivec2(x, row), vec4(t.rg, e_avg, 1.0));
+        imageStore(lut, ivec2(x, row), vec4(t.rg, e_avg, t.a));
     }
 }

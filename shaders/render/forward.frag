@@ -1,19 +1,24 @@
 #version 460
-// Cook-Torrance shading, the thesis' reflectance equation: punctual lights with the
-// full BRDF, image-based lighting with the split sum, Lambert diffuse with
-// kd = (1 - F)(1 - metalness), all composed by facet/shading.glsl (what a host's own
-// shaders call too); this file reads the material and the frame's data. Variants
-// (defines) carry only the features a material uses: HAS_BASE_COLOR_MAP,
+// The reflectance equation: punctual lights with the full BRDF, image-based lighting with
+// the split sum, all composed by facet/shading.glsl (what a host's own shaders call too)
+// for the BRDF model of the frame; this file reads the material and the frame's data.
+// Variants (defines) carry only the features a material uses: HAS_BASE_COLOR_MAP,
 // HAS_METALLIC_ROUGHNESS_MAP, HAS_NORMAL_MAP, HAS_OCCLUSION_MAP, HAS_EMISSIVE_MAP,
-// ALPHA_MASK, ALPHA_BLEND, DOUBLE_SIDED, USE_IBL, HEIGHT_CORRELATED (glTF's Smith term
-// instead of Schlick-GGX), MULTISCATTER (energy compensation), DOMINANT_DIRECTION (bent
-// specular lookup), VIEW (what is written: render/views.glsl).
+// ALPHA_MASK, ALPHA_BLEND, DOUBLE_SIDED, USE_IBL, BRDF_THESIS (the thesis' model instead
+// of glTF's), MULTISCATTER (energy compensation), DOMINANT_DIRECTION (bent specular
+// lookup), VIEW (what is written: render/views.glsl).
 #include "facet/shading.glsl"
 #include "render/forward_interface.glsl"
 #include "render/views.glsl"
 
 #ifndef VIEW
 #define VIEW VIEW_FINAL
+#endif
+
+#ifdef BRDF_THESIS
+const uint brdf_model = FACET_BRDF_THESIS;
+#else
+const uint brdf_model = FACET_BRDF_GLTF;
 #endif
 
 layout(location = 0) in vec3 in_world;
@@ -69,16 +74,10 @@ Surface surface_at(MaterialData m) {
         n = normalize(mat3(t, b, n) * tn);
     }
 #endif
-    s.shading = facet_surface(n, base.rgb, clamp(metallic, 0.0, 1.0), clamp(roughness, 0.0, 1.0), m.emissive_f0.a,
+    s.shading = facet_surface(brdf_model, n, base.rgb, clamp(metallic, 0.0, 1.0), clamp(roughness, 0.0, 1.0), m.emissive_f0.a,
                               m.extra.y, occlusion);
     return s;
 }
-
-#ifdef HEIGHT_CORRELATED
-const bool height_correlated = true;
-#else
-const bool height_correlated = false;
-#endif
 
 void main() {
     MaterialData m = materials[draw.material];
@@ -93,7 +92,7 @@ void main() {
 
     vec3 diffuse = vec3(0.0), specular = vec3(0.0);
 #ifdef USE_IBL
-    vec3 lut = facet_brdf_lut(brdf_lut, NdotV, s.roughness);
+    vec4 lut = facet_brdf_lut(brdf_lut, NdotV, s.roughness);
     // frame.ibl.y is the highest specular level (roughness 1).
     float specular_levels = frame.ibl.y + 1.0;
 #endif
@@ -105,17 +104,16 @@ void main() {
     // The component views show the terms for the first light, or for the mirror
     // direction (h = n) when the scene has no light.
     vec3 view_l = reflect(-v, n);
-    float view_k = k_ibl(s.roughness);
+    bool view_punctual = false;
     for (uint i = 0u; i < frame.counts.x; ++i) {
         vec3 l;
         vec3 incident = facet_punctual_incidence(unpack_punctual_light(lights[i]), in_world, l);
         if (i == 0u) {
             view_l = l;
-            view_k = k_direct(s.roughness);
+            view_punctual = true;
         }
         vec3 light_diffuse, light_specular;
-        facet_reflect_light(s, v, NdotV, l, incident, k_direct(s.roughness), height_correlated, light_diffuse,
-                            light_specular);
+        facet_reflect_light(s, v, NdotV, l, incident, true, light_diffuse, light_specular);
         diffuse += light_diffuse;
         specular += light_energy * light_specular;
     }
@@ -171,16 +169,18 @@ void main() {
 #elif VIEW == VIEW_PREFILTERED
     out_color = vec4(prefiltered, 1.0);
 #elif VIEW == VIEW_SPECULAR_F0
-    out_color = vec4(s.F0, s.specular_weight);
+    out_color = vec4(vec3(s.dielectric_f0), s.specular_factor);
 #else
     vec3 h = normalize(v + view_l);
     float NdotL = clamp(dot(n, view_l), 0.0, 1.0);
 #if VIEW == VIEW_D
     out_color = vec4(vec3(D_GGX(clamp(dot(n, h), 0.0, 1.0), s.roughness)), 1.0);
 #elif VIEW == VIEW_F
-    out_color = vec4(s.specular_weight * F_Schlick(clamp(dot(h, v), 0.0, 1.0), s.F0), 1.0);
+    vec3 F, kd;
+    facet_fresnel(s, clamp(dot(h, v), 0.0, 1.0), F, kd);
+    out_color = vec4(F, 1.0);
 #elif VIEW == VIEW_G
-    out_color = vec4(vec3(G_Smith(NdotV, NdotL, view_k)), 1.0);
+    out_color = vec4(vec3(facet_geometry(s, NdotV, NdotL, view_punctual)), 1.0);
 #endif
 #endif
 }

@@ -4,10 +4,8 @@
 // takes one BRDF sample (GGX for the specular lobe, cosine for the diffuse one) and one
 // environment sample (texels in proportion to luminance x solid angle) per pixel and
 // combines them with the balance heuristic (Veach and Guibas 1995); punctual lights are
-// added in closed form. The BRDF is the forward pass's (facet/shading.glsl's
-// facet_reflect_light): D_GGX, F_Schlick on h.v, Smith/Schlick-GGX with k = r^2/2 for the
-// environment (k = (r+1)^2/8 for lights, or the height-correlated term),
-// kd = (1 - F)(1 - metalness), Lambert. The environment is piecewise constant per texel,
+// added in closed form. The BRDF is the forward pass's model (facet/shading.glsl's
+// facet_reflect_light, glTF's or the thesis'). The environment is piecewise constant per texel,
 // as in the brute-force sums of the tests.
 #include "facet/shading.glsl"
 #include "ibl/equirect.glsl"
@@ -33,7 +31,7 @@ layout(binding = 11, rgba32f) uniform image2D moments;       // x: sum of Y, y: 
 
 layout(push_constant) uniform Params {
     vec4 camera_position;  // xyz
-    uvec4 env;             // width, height, light count, flags (1: height-correlated lights)
+    uvec4 env;             // width, height, light count, flags (1: the thesis' BRDF model, else glTF's)
     uvec4 batch;           // samples in this batch, first sample index
     vec4 scale;            // x: environment intensity
 } params;
@@ -82,9 +80,9 @@ struct Surface {
 };
 
 // BRDF x cos x radiance arriving along l (facet/shading.glsl's composition).
-vec3 reflected(Surface s, vec3 l, vec3 radiance, float k, bool height_correlated) {
+vec3 reflected(Surface s, vec3 l, vec3 radiance, bool punctual) {
     vec3 diffuse, specular;
-    facet_reflect_light(s.shading, s.v, s.NdotV, l, radiance, k, height_correlated, diffuse, specular);
+    facet_reflect_light(s.shading, s.v, s.NdotV, l, radiance, punctual, diffuse, specular);
     return diffuse + specular;
 }
 
@@ -135,11 +133,10 @@ vec3 sample_environment(vec4 u, out float pdf) {
 
 vec3 punctual(Surface s, vec3 p) {
     vec3 sum = vec3(0.0);
-    bool height_correlated = (params.env.w & 1u) != 0u;
     for (uint i = 0u; i < params.env.z; ++i) {
         vec3 l;
         vec3 incident = facet_punctual_incidence(unpack_punctual_light(lights[i]), p, l);
-        sum += reflected(s, l, incident, k_direct(s.shading.roughness), height_correlated);
+        sum += reflected(s, l, incident, true);
     }
     return sum;
 }
@@ -159,20 +156,15 @@ void main() {
         return;
     }
     Surface s;
-    // The views hold the forward pass's surface terms (F0 and the specular weight
-    // included), so the shading surface is read back, not derived again.
-    s.shading.n = normalize(normal.xyz);
-    s.shading.albedo = texelFetch(basecolor_view, pixel, 0).rgb;
-    s.shading.metallic = texelFetch(metallic_view, pixel, 0).r;
-    s.shading.roughness = texelFetch(roughness_view, pixel, 0).r;
-    vec4 f0 = texelFetch(f0_view, pixel, 0);
-    s.shading.F0 = f0.rgb;
-    s.shading.specular_weight = f0.a;
-    s.shading.occlusion = 1.0;
+    // The views hold the forward pass's surface terms (the dielectric F0 and the specular
+    // factor included), so the shading surface is read back, not derived again.
+    vec4 f0 = texelFetch(f0_view, pixel, 0);  // the dielectric F0 and specular factor
+    s.shading = facet_surface((params.env.w & 1u) != 0u ? FACET_BRDF_THESIS : FACET_BRDF_GLTF, normalize(normal.xyz),
+                              texelFetch(basecolor_view, pixel, 0).rgb, texelFetch(metallic_view, pixel, 0).r,
+                              texelFetch(roughness_view, pixel, 0).r, f0.r, f0.a, 1.0);
     s.v = normalize(params.camera_position.xyz - position.xyz);
     s.NdotV = clamp(dot(s.shading.n, s.v), 0.0, 1.0);
-    s.p_specular = f0.a <= 0.0 ? 0.0 : mix(0.5, 1.0, s.shading.metallic);
-    float k = k_ibl(s.shading.roughness);
+    s.p_specular = s.shading.specular_weight <= 0.0 ? 0.0 : mix(0.5, 1.0, s.shading.metallic);
     vec3 p = position.xyz;
 
     uint rng = hash(uint(pixel.x) * 1973u + uint(pixel.y) * 9277u + params.batch.y * 26699u);
@@ -185,7 +177,7 @@ void main() {
         float pb = brdf_pdf(s, l);
         if (pb > 0.0) {
             float pe = env_pdf(l);
-            batch_sum += reflected(s, l, env_radiance(l), k, false) / (pb + pe);
+            batch_sum += reflected(s, l, env_radiance(l), false) / (pb + pe);
         }
         // Environment sample.
         float pe;
@@ -193,7 +185,7 @@ void main() {
                                     kronecker(i, 6u, shift[6])), pe);
         if (pe > 0.0 && dot(s.shading.n, l) > 0.0) {
             float pb2 = brdf_pdf(s, l);
-            batch_sum += reflected(s, l, env_radiance(l), k, false) / (pb2 + pe);
+            batch_sum += reflected(s, l, env_radiance(l), false) / (pb2 + pe);
         }
     }
     vec3 batch_mean = count > 0u ? batch_sum / float(count) : vec3(0.0);

@@ -106,6 +106,13 @@ bool parse(const std::string& parser, std::vector<std::string>& args) {
         }
         return true;
     } else if (parser == "facet-bench") {
+        if (argc > 1 && std::string(argv[1]) == "accuracy") {  // facet_bench.cpp's dispatch
+            auto accuracy = parse_accuracy_options(argc, argv.data());
+            if (!accuracy) return true;
+            check_job(accuracy->job);
+            FACET_FUZZ_EXPECT(!accuracy->envs.empty() && !accuracy->truth_models.empty(), "bad accuracy options");
+            return true;
+        }
         auto o = parse_bench_options(argc, argv.data());
         if (!o) return true;
         if (o->benchmark == "render") check_job(parse_render_bench_options(o->args).job);

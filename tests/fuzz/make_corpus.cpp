@@ -159,7 +159,7 @@ void make_cli_corpus(const fs::path& dir) {
     const std::pair<const char*, const char*> seeds[] = {
         {"bake_all", "facet-bake\nbuiltin:sky\n--out\nout/sky\n--irradiance\nsh9\n--sh9-no-window\n--specular\n"
                      "filtered\n--samples\n64\n--size\n32\n--levels\n4\n--irradiance-size\n8\n--lut-size\n16\n"
-                     "--lut-samples\n32\n--lut-height-correlated\n--width\n64\n--exposure\n0.5\n--sanitize\n"
+                     "--lut-samples\n32\n--brdf\nthesis\n--width\n64\n--exposure\n0.5\n--sanitize\n"
                      "--target-error\n0.02\n--roughness\n0.2,0.8\n--force\n--device\n0\n--validation\n--graph-dot\ng.dot"},
         {"bake_inline", "facet-bake\nenv.hdr\n--out=dir\n--irradiance=riemann\n--specular=mips"},
         {"bake_help", "facet-bake\n--help"},
@@ -167,7 +167,7 @@ void make_cli_corpus(const fs::path& dir) {
                        "--width\n64\n--height\n32\n--camera\norbit:30,20,3\n--target\n0,0.5,0\n--fov\n60\n--exposure\n2\n"
                        "--tonemap\naces\n--gamma\n2.2\n--preset\ngold\n--light\ndirectional dir=-1,-1,-1 intensity=3\n"
                        "--light\npoint pos=1,2,3 intensity=100 range=5 color=1,0.5,0\n--light\n"
-                       "spot pos=0,2,0 dir=0,-1,0 inner=10 outer=30\n--no-skybox\n--samples\n8\n--height-correlated\n"
+                       "spot pos=0,2,0 dir=0,-1,0 inner=10 outer=30\n--no-skybox\n--samples\n8\n--brdf\nthesis\n"
                        "--extract-lights\n--multiscatter\n--specular-dir\ndominant\n--ibl-intensity\n0.5\n"
                        "--env-width\n64\n--ibl-size\n16\n--ibl-samples\n32\n--sanitize\n--reference\n"
                        "--reference-noise\n0.05\n--reference-samples\n64\n--device\nlavapipe\n--validation"},

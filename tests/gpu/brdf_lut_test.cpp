@@ -53,7 +53,7 @@ protected:
         for (uint32_t y : picks)
             for (uint32_t x : picks) {
                 const test::Ab ref = test::brdf_lut_reference((x + 0.5) / n, (y + 0.5) / n,
-                                         settings.visibility == LutVisibility::height_correlated);
+                                         settings.brdf == BrdfModel::gltf);
                 const float* texel = &t[(size_t(y) * n + x) * 4];
                 const double err = std::max(std::abs(texel[0] - ref.a), std::abs(texel[1] - ref.b));
                 if (err > worst) {
@@ -65,24 +65,49 @@ protected:
         RecordProperty("max_abs_error", std::to_string(worst));
         EXPECT_LE(worst, bound) << "worst at x " << worst_x << " y " << worst_y;
         std::printf("LUT %ux%u, %u samples, %s: max abs error %.2e (x %u, y %u)\n", n, n, settings.sample_count,
-                    settings.visibility == LutVisibility::height_correlated ? "height-correlated" : "Schlick-GGX",
+                    settings.brdf == BrdfModel::gltf ? "glTF (height-correlated)" : "thesis (Schlick-GGX)",
                     worst, worst_x, worst_y);
     }
 };
 
-// The defaults (128^2, 2048 samples) against the bound of 2e-3.
-TEST_F(BrdfLutTest, SchlickGgxMatchesQuadrature) { check_against_reference(BrdfLutSettings{}, 2e-3); }
+// The defaults (128^2, 2048 samples, glTF's model) against the bound of 2e-3.
+TEST_F(BrdfLutTest, GltfModelMatchesQuadrature) { check_against_reference(BrdfLutSettings{}, 2e-3); }
 
-TEST_F(BrdfLutTest, HeightCorrelatedMatchesQuadrature) {
+TEST_F(BrdfLutTest, ThesisModelMatchesQuadrature) {
     BrdfLutSettings settings;
-    settings.visibility = LutVisibility::height_correlated;
+    settings.brdf = BrdfModel::thesis;
     check_against_reference(settings, 2e-3);
+}
+
+// Fourth channel: W(n.v) = integral over the hemisphere of (1 - v.h)^5 (n.l) / pi, the
+// diffuse lobe's mean Fresnel weight (h = normalize(v + l), no roughness), against a
+// midpoint quadrature in (theta, phi) here; equal along every row.
+TEST_F(BrdfLutTest, FourthChannelIsTheDiffuseFresnelWeight) {
+    const uint32_t n = 32;
+    auto t = bake({n, 1024, BrdfModel::gltf});
+    for (uint32_t x = 0; x < n; x += 5) {
+        const double mu = (x + 0.5) / n, sv = std::sqrt(1 - mu * mu);
+        double w = 0;
+        const int steps = 400;
+        for (int i = 0; i < steps; ++i)
+            for (int j = 0; j < 2 * steps; ++j) {
+                const double theta = (i + 0.5) / steps * M_PI / 2, phi = (j + 0.5) / (2 * steps) * 2 * M_PI;
+                const double l[3] = {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+                double h[3] = {l[0] + sv, l[1], l[2] + mu};
+                const double len = std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+                const double vh = (h[0] * sv + h[2] * mu) / len;
+                w += std::pow(1 - vh, 5) * std::cos(theta) / M_PI * std::sin(theta) * (M_PI / 2 / steps) *
+                     (2 * M_PI / (2 * steps));
+            }
+        for (uint32_t y : {0u, n / 2, n - 1})
+            EXPECT_NEAR(t[(size_t(y) * n + x) * 4 + 3], w, 2e-3) << "n.v " << mu << " row " << y;
+    }
 }
 
 // Third channel: E_avg = 2 * integral E(mu) mu dmu with E = A + B, per roughness row.
 TEST_F(BrdfLutTest, EnergyChannelIsTheRowsAverageAlbedo) {
     const uint32_t n = 64;
-    auto t = bake({n, 512, LutVisibility::smith_schlick_ggx});
+    auto t = bake({n, 512, BrdfModel::thesis});
     for (uint32_t y : {0u, n / 2, n - 1}) {
         double sum = 0;
         for (uint32_t x = 0; x < n; ++x) {

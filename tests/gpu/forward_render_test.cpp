@@ -1,5 +1,5 @@
 // The forward pass on lavapipe, checked against closed forms computed here: the white
-// furnace, energy (no material reflects more than it receives), a directional light's
+// furnace, the white furnace of both BRDF models against their directional albedo, a directional light's
 // Lambert radiance in lux, spot cones, alpha modes and blending order, double-sided
 // primitives, the component views against independent formulas, and the graph holding
 // only what the frame needs. The fixture fails on any validation message.
@@ -110,28 +110,97 @@ TEST_F(ForwardRenderTest, WhiteFurnaceLambertSphereIsOneEverywhere) {
     EXPECT_LT(worst, 1e-3) << "radiance 1 in, albedo 1: every pixel must be 1";
 }
 
-// Under uniform radiance 1, no preset and no roughness/metalness reflects more than 1.
-TEST_F(ForwardRenderTest, NoMaterialReflectsMoreThanItReceives) {
-    double worst = 0;
-    std::vector<std::optional<std::string>> presets = {std::nullopt};
-    for (const MaterialPreset& p : material_presets()) presets.push_back(p.name);
-    for (const auto& preset : presets) {
+// The directional albedo of a white material (albedo 1, dielectric F0 0.04) under the
+// model, the integral of f (n.l) over the hemisphere by a midpoint rule in (theta, phi):
+// what a surface reflects under uniform radiance 1 (the white furnace).
+double directional_albedo(BrdfModel model, double metallic, double roughness, double mu) {
+    const double alpha = roughness * roughness, a2 = alpha * alpha, k = roughness * roughness / 2;
+    const double v[3] = {std::sqrt(1 - mu * mu), 0, mu};
+    const int n = 160;
+    double sum = 0;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < 2 * n; ++j) {
+            const double theta = (i + 0.5) / n * pi / 2, phi = (j + 0.5) / n * pi;
+            const double l[3] = {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+            double h[3] = {l[0] + v[0], l[1], l[2] + v[2]};
+            const double len = std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+            const double nl = l[2], nh = h[2] / len, vh = (h[0] * v[0] + h[2] * v[2]) / len;
+            const double q = nh * nh * (a2 - 1) + 1, D = a2 / (pi * q * q), w = std::pow(1 - vh, 5);
+            double f;
+            if (model == BrdfModel::gltf) {
+                const double V = 0.5 / (nl * std::sqrt(mu * mu * (1 - a2) + a2) + mu * std::sqrt(nl * nl * (1 - a2) + a2));
+                const double Fd = 0.04 + 0.96 * w;  // the metal's F is 1 for albedo 1
+                f = (1 - Fd) * (1 - metallic) / pi + ((1 - metallic) * Fd + metallic) * D * V;
+            } else {
+                const double G = mu / (mu * (1 - k) + k) * nl / (nl * (1 - k) + k);
+                const double f0 = 0.04 * (1 - metallic) + metallic, F = f0 + (1 - f0) * w;
+                f = (1 - F) * (1 - metallic) / pi + F * D * G / (4 * nl * mu);
+            }
+            sum += f * nl * std::sin(theta);
+        }
+    return sum * (pi / 2 / n) * (pi / n);
+}
+
+// The white furnace for both models: white metal (top row) and white dielectric (bottom
+// row) spheres of roughness 0.25 to 1 under uniform radiance 1 reflect their directional
+// albedo (computed above) at every pixel with n.v >= 0.2. The glTF model is not energy
+// conserving at grazing angles on smooth dielectrics (its (1 - F) on v.h), so the albedo,
+// not 1, is the bound.
+TEST_F(ForwardRenderTest, WhiteFurnaceMatchesTheDirectionalAlbedo) {
+    for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis}) {
         RenderJob job = small_job("builtin:spheres", "builtin:white");
-        job.frame.width = 112;
-        job.frame.height = 112;
+        job.frame.width = 200;
+        job.frame.height = 80;
+        job.frame.samples = 1;
         job.frame.skybox = false;
-        job.preset = preset;
-        // Albedo 1: the brightest a material can be.
+        job.frame.brdf = model;
+        job.ibl.lut = BrdfLutSettings{};  // the default LUT: 128^2, 2048 samples
+        job.frame.views = {View::normal, View::position};
         SpheresGrid grid;
+        grid.columns = 5;
+        grid.rows = 2;
         grid.albedo = glm::vec3(1.0f);
-        auto scene = builtin_scene("builtin:spheres", preset ? find_material_preset(*preset) : std::nullopt, grid);
+        auto scene = builtin_scene("builtin:spheres", std::nullopt, grid);
         ASSERT_TRUE(scene);
-        const RenderedImages images = render(job, std::move(scene).value());
-        for (size_t i = 0; i + 3 < images.hdr.size(); i += 4)
-            for (int c = 0; c < 3; ++c) worst = std::max(worst, double(images.hdr[i + c]));
+        auto session = RenderSession::create(ctx(), job, std::move(scene).value());
+        ASSERT_TRUE(session) << session.error().message;
+        auto images = (*session)->render_frame();
+        ASSERT_TRUE(images) << images.error().message;
+        const glm::dvec3 eye = (*session)->camera().position;
+        // Albedo tables per sphere over mu = 0.2 .. 1 (linear between 17 points).
+        std::vector<std::vector<double>> table(10);
+        for (int sphere = 0; sphere < 10; ++sphere)
+            if (sphere % 5 != 0)
+                for (int i = 0; i <= 16; ++i)
+                    table[size_t(sphere)].push_back(
+                        directional_albedo(model, sphere / 5, (sphere % 5) / 4.0, 0.2 + 0.8 * i / 16));
+        int checked = 0;
+        double worst = 0, worst_mu = 0;
+        int worst_sphere = 0;
+        for (uint32_t y = 0; y < 80; ++y)
+            for (uint32_t x = 0; x < 200; ++x) {
+                const Pixel n = at(images->views[0].second, 200, x, y), p = at(images->views[1].second, 200, x, y);
+                const Pixel c = at(images->hdr, 200, x, y);
+                if (n.a < 1.0f || c.a < 1.0f) continue;
+                const int col = int(std::lround(p.r / grid.spacing + 2)), row = int(std::lround(p.g / grid.spacing + 0.5));
+                if (col < 1 || col > 4 || row < 0 || row > 1) continue;
+                const double mu = glm::dot(glm::dvec3(n.r, n.g, n.b), glm::normalize(eye - glm::dvec3(p.r, p.g, p.b)));
+                if (mu < 0.2) continue;
+                const double t = (mu - 0.2) / 0.8 * 16;
+                const int i = std::min(15, int(t));
+                const std::vector<double>& a = table[size_t(row * 5 + col)];
+                const double want = a[size_t(i)] + (t - i) * (a[size_t(i) + 1] - a[size_t(i)]);
+                if (std::abs(c.g - want) / want > worst)
+                    worst = std::abs(c.g - want) / want, worst_mu = mu, worst_sphere = row * 5 + col;
+                ++checked;
+            }
+        std::printf("%s furnace: %d pixels, worst relative error %.4f (metallic %d, roughness %.2f, n.v %.3f)\n",
+                    brdf_model_name(model), checked, worst, worst_sphere / 5, (worst_sphere % 5) / 4.0, worst_mu);
+        EXPECT_GT(checked, 1000);
+        // The LUT's last row holds roughness 1 - 1 / 256 (design.md's texel centres): at
+        // roughness 1 and n.v 1 the metal's albedo reads 1.4% high (measured).
+        EXPECT_LT(worst, 0.02) << brdf_model_name(model);
     }
-    EXPECT_LE(worst, 1.0 + 2e-3) << "brightest pixel " << worst;
-    EXPECT_GT(worst, 0.9);
 }
 
 // A directional light of E lux on a white Lambert sphere: L = E / pi * max(n.l, 0).
@@ -252,7 +321,7 @@ TEST_F(ForwardRenderTest, ComponentViewsMatchTheirFormulas) {
     auto view = [&](int i, uint32_t x, uint32_t y) { return at(images.views[size_t(i)].second, 64, x, y); };
     const glm::vec3 eye = session->camera().position;
     const double roughness = 0.5, f0 = 0.04;  // builtin:sphere: white dielectric, roughness 0.5
-    const double alpha = roughness * roughness, k = (roughness + 1) * (roughness + 1) / 8;
+    const double alpha = roughness * roughness;
     int checked = 0;
     for (uint32_t y = 4; y < 60; y += 3)
         for (uint32_t x = 4; x < 60; x += 3) {
@@ -266,7 +335,9 @@ TEST_F(ForwardRenderTest, ComponentViewsMatchTheirFormulas) {
             const double d = nh * nh * (alpha * alpha - 1) + 1;
             const double D = alpha * alpha / (pi * d * d);
             const double F = f0 + (1 - f0) * std::pow(1 - hv, 5);
-            const double G = nv / (nv * (1 - k) + k) * nl / (nl * (1 - k) + k);
+            // glTF's model (the default): G = 4 n.l n.v V with the height-correlated V.
+            const double a2 = alpha * alpha;
+            const double G = 2 * nl * nv / (nl * std::sqrt(nv * nv * (1 - a2) + a2) + nv * std::sqrt(nl * nl * (1 - a2) + a2));
             EXPECT_NEAR(view(2, x, y).r, D, 2e-3 * std::max(1.0, D)) << x << "," << y;
             EXPECT_NEAR(view(3, x, y).r, F, 1e-4) << x << "," << y;
             EXPECT_NEAR(view(4, x, y).r, G, 1e-4) << x << "," << y;
@@ -278,14 +349,14 @@ TEST_F(ForwardRenderTest, ComponentViewsMatchTheirFormulas) {
 }
 
 // A metal sphere under one directional light: the specular radiance is f_s E (n.l) with
-// Smith/Schlick-GGX (k = (r+1)^2/8, the thesis) by default, or glTF's height-correlated
-// visibility on request.
-TEST_F(ForwardRenderTest, SpecularWithBothSmithTerms) {
+// glTF's height-correlated visibility by default, or the thesis' Smith/Schlick-GGX
+// (k = (r+1)^2/8) with --brdf thesis.
+TEST_F(ForwardRenderTest, SpecularWithBothBrdfModels) {
     for (bool height_correlated : {false, true}) {
         RenderJob job = small_job("builtin:sphere", "none");
         job.preset = "silver";
         job.frame.samples = 1;
-        job.frame.height_correlated = height_correlated;
+        job.frame.brdf = height_correlated ? BrdfModel::gltf : BrdfModel::thesis;
         job.frame.views = {View::normal, View::position};
         Light light;
         light.type = LightType::directional;

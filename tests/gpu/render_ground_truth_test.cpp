@@ -61,6 +61,8 @@ Rendered render_spheres(const std::string& env_path, const std::function<void(Re
     job.frame.width = job.frame.height = 280;
     job.frame.skybox = false;
     job.frame.views = {View::normal, View::position};
+    job.frame.brdf = BrdfModel::thesis;  // support/render_truth.h's model
+    job.shading = ShadingMethod::split_sum;  // the configurations add to it
     if (configure) configure(job);
     Rendered r;
     auto session = RenderSession::create(test::gpu(), job);

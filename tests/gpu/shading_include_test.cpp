@@ -85,8 +85,12 @@ struct Brdf {
     V3 diffuse, specular;
 };
 
-// The thesis' BRDF times n.l for unit incident radiance, written from the equations.
-Brdf thesis_brdf(V3 n, V3 v, V3 l, V3 albedo, double metallic, double roughness, bool height_correlated, double k) {
+// The BRDF times n.l for unit incident radiance, written from the equations: glTF's
+// (height-correlated visibility, diffuse weighted by 1 - F of the dielectric F0 0.04, the
+// specular F mixed between F(0.04) and F(albedo)) or the thesis' (Schlick-GGX of factor k,
+// kd = (1 - F)(1 - metallic) with F0 = mix(0.04, albedo, metallic)).
+Brdf model_brdf(V3 n, V3 v, V3 l, V3 albedo, double metallic, double roughness, bool gltf, double k) {
+    const bool height_correlated = gltf;
     const V3 h = normalize(v + l);
     const double nl = dot(n, l), nv = dot(n, v), nh = dot(n, h), vh = dot(v, h);
     const double alpha = roughness * roughness, a2 = alpha * alpha;
@@ -100,8 +104,15 @@ Brdf thesis_brdf(V3 n, V3 v, V3 l, V3 albedo, double metallic, double roughness,
         DG = D * G / (4 * nl * nv);
     }
     auto channel = [&](double a, double& d, double& s) {
+        const double w = std::pow(1 - vh, 5);
+        if (gltf) {
+            const double Fd = 0.04 + 0.96 * w, Fm = a + (1 - a) * w;
+            d = (1 - Fd) * (1 - metallic) * a / pi * nl;
+            s = (Fd * (1 - metallic) + Fm * metallic) * DG * nl;
+            return;
+        }
         const double f0 = 0.04 * (1 - metallic) + a * metallic;
-        const double F = f0 + (1 - f0) * std::pow(1 - vh, 5);
+        const double F = f0 + (1 - f0) * w;
         d = (1 - F) * (1 - metallic) * a / pi * nl;
         s = F * DG * nl;
     };
@@ -112,17 +123,18 @@ Brdf thesis_brdf(V3 n, V3 v, V3 l, V3 albedo, double metallic, double roughness,
     return b;
 }
 
-TEST_F(ShadingIncludeTest, ReflectLightIsTheThesisBrdf) {
+TEST_F(ShadingIncludeTest, ReflectLightIsTheModelsBrdf) {
     const std::string body = R"(
-    FacetSurface s = facet_surface(vec3(0.0, 0.0, 1.0), vec3(0.8, 0.5, 0.2), 0.3, 0.5, 0.04, 1.0, 1.0);
+    FacetSurface s = facet_surface(FACET_BRDF_THESIS, vec3(0.0, 0.0, 1.0), vec3(0.8, 0.5, 0.2), 0.3, 0.5, 0.04, 1.0, 1.0);
     vec3 v = normalize(vec3(0.3, 0.1, 1.0)), l = normalize(vec3(-0.5, 0.2, 0.8));
     float NdotV = clamp(dot(s.n, v), 0.0, 1.0);
     vec3 d, sp;
-    facet_reflect_light(s, v, NdotV, l, vec3(2.0), k_direct(s.roughness), false, d, sp);
+    facet_reflect_light(s, v, NdotV, l, vec3(2.0), true, d, sp);
     put(0u, d); put(3u, sp);
-    facet_reflect_light(s, v, NdotV, l, vec3(2.0), 0.0, true, d, sp);
+    s.brdf = FACET_BRDF_GLTF;
+    facet_reflect_light(s, v, NdotV, l, vec3(2.0), true, d, sp);
     put(6u, d); put(9u, sp);
-    facet_reflect_light(s, v, NdotV, vec3(0.0, 0.6, -0.8), vec3(2.0), k_direct(s.roughness), false, d, sp);
+    facet_reflect_light(s, v, NdotV, vec3(0.0, 0.6, -0.8), vec3(2.0), true, d, sp);
     put(12u, d + sp);
 )";
     auto v = test::run_compute_probe(ctx(), "reflect_probe.comp", probe(body), 15);
@@ -130,11 +142,11 @@ TEST_F(ShadingIncludeTest, ReflectLightIsTheThesisBrdf) {
     const V3 n{0, 0, 1}, view = normalize({0.3, 0.1, 1.0}), l = normalize({-0.5, 0.2, 0.8}), albedo{0.8, 0.5, 0.2};
     const double k = (0.5 + 1) * (0.5 + 1) / 8;
     for (bool correlated : {false, true}) {
-        const Brdf b = thesis_brdf(n, view, l, albedo, 0.3, 0.5, correlated, k);
+        const Brdf b = model_brdf(n, view, l, albedo, 0.3, 0.5, correlated, k);
         const size_t o = correlated ? 6 : 0;
         const double d[3] = {b.diffuse.x, b.diffuse.y, b.diffuse.z}, s[3] = {b.specular.x, b.specular.y, b.specular.z};
         for (int c = 0; c < 3; ++c) {
-            const std::string what = std::to_string(c) + (correlated ? " height-correlated" : " Schlick-GGX");
+            const std::string what = std::to_string(c) + (correlated ? " glTF" : " thesis");
             EXPECT_NEAR(v[o + c], 2 * d[c], 1e-5 * std::max(1.0, d[c])) << "diffuse " << what;
             EXPECT_NEAR(v[o + 3 + c], 2 * s[c], 1e-5 * std::max(1.0, s[c])) << "specular " << what;
         }
@@ -173,14 +185,14 @@ TEST_F(ShadingIncludeTest, DiskLightLimits) {
     disk.cos_radius = cos(0.02);
     disk.angular_radius = 0.02;
     disk.radiance = vec3(1000.0);
-    FacetSurface s = facet_surface(vec3(0.0, 0.0, 1.0), vec3(0.8, 0.5, 0.2), 0.3, 0.9, 0.04, 1.0, 1.0);
+    FacetSurface s = facet_surface(FACET_BRDF_THESIS, vec3(0.0, 0.0, 1.0), vec3(0.8, 0.5, 0.2), 0.3, 0.9, 0.04, 1.0, 1.0);
     vec3 v = normalize(vec3(0.3, 0.1, 1.0));
     float NdotV = clamp(dot(s.n, v), 0.0, 1.0);
-    vec3 lut = vec3(0.7, 0.1, 0.0);
+    vec4 lut = vec4(0.7, 0.1, 0.0, 0.05);
     vec3 d, sp;
     facet_disk_light(s, v, NdotV, disk, lut, d, sp);
     put(0u, d); put(3u, sp);
-    FacetSurface mirror = facet_surface(vec3(0.0, 0.0, 1.0), vec3(1.0, 0.5, 0.25), 1.0, 0.01, 0.04, 1.0, 1.0);
+    FacetSurface mirror = facet_surface(FACET_BRDF_THESIS, vec3(0.0, 0.0, 1.0), vec3(1.0, 0.5, 0.25), 1.0, 0.01, 0.04, 1.0, 1.0);
     vec3 r = reflect(-disk.direction, mirror.n);  // v such that R hits the disk's centre
     facet_disk_light(mirror, r, clamp(dot(mirror.n, r), 0.0, 1.0), disk, lut, d, sp);
     put(6u, d); put(9u, sp);
@@ -188,7 +200,7 @@ TEST_F(ShadingIncludeTest, DiskLightLimits) {
     auto v = test::run_compute_probe(ctx(), "disk_probe.comp", probe(body), 12);
     ASSERT_EQ(v.size(), 12u);
     const double omega = 2 * pi * (1 - std::cos(theta));
-    const Brdf b = thesis_brdf({0, 0, 1}, normalize({0.3, 0.1, 1.0}), normalize({-0.5, 0.2, 0.8}), {0.8, 0.5, 0.2}, 0.3,
+    const Brdf b = model_brdf({0, 0, 1}, normalize({0.3, 0.1, 1.0}), normalize({-0.5, 0.2, 0.8}), {0.8, 0.5, 0.2}, 0.3,
                                0.9, false, 0.9 * 0.9 / 2);
     EXPECT_NEAR(v[0], 1000 * omega * b.diffuse.x, 0.01 * 1000 * omega * b.diffuse.x);
     EXPECT_NEAR(v[2], 1000 * omega * b.diffuse.z, 0.01 * 1000 * omega * b.diffuse.z);
@@ -205,7 +217,7 @@ TEST_F(ShadingIncludeTest, DiskLightLimits) {
 TEST_F(ShadingIncludeTest, MultiscatterLightEnergy) {
     auto v = test::run_compute_probe(ctx(), "energy_probe.comp",
                                      probe("put(0u, facet_multiscatter_light_energy(vec3(1.0, 0.5, 0.0), "
-                                           "vec3(0.6, 0.2, 0.0)));\n"),
+                                           "vec4(0.6, 0.2, 0.0, 0.0)));\n"),
                                      3);
     ASSERT_EQ(v.size(), 3u);
     EXPECT_NEAR(v[0], 1 + 1.0 * (1 / 0.8 - 1), 1e-6);

@@ -47,9 +47,10 @@ TEST(HostEngine, RendersLikeFacetRenderWithNoValidationMessageAndNoSteadyAllocat
     EXPECT_EQ(host.output.find("Validation"), std::string::npos) << host.output;
     EXPECT_TRUE(fs::exists(dir / "bake" / "bake.json"));
 
+    // The host engine shades with the plain split sum (the method is the engine's to pick).
     const facet::test::Ran render = facet::test::run_command(
         std::string(FACET_RENDER_PATH) + " --no-bake-cache --model " + model + " --env " + env +
-        " --camera orbit:0,0,3 --target 0,0,0 --fov 45 --width 320 --height 240 --out " +
+        " --camera orbit:0,0,3 --target 0,0,0 --fov 45 --width 320 --height 240 --shading split-sum --out " +
         (dir / "render.png").string());
     ASSERT_EQ(render.status, 0) << render.output;
 

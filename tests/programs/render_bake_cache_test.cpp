@@ -66,6 +66,29 @@ size_t count(const std::string& text, const std::string& what) {
 
 }  // namespace
 
+// A bake's LUT belongs to one BRDF model (bake.json's brdf_lut.brdf): rendering it with
+// the other is an error naming both, and writes nothing; with the same model it renders.
+TEST(RenderBakeCache, ABakeForTheOtherBrdfModelIsRefused) {
+    TempDir dir("render_brdf");
+    Ran bake = facet::test::run_command(std::string(FACET_BAKE_PATH) + " builtin:sky --width 64 --size 16 --brdf thesis --out " +
+                                        (dir / "bake").string());
+    ASSERT_EQ(bake.status, 0) << bake.output;
+    EXPECT_NE(read_text(dir / "bake" / "bake.json").find("\"brdf\": \"thesis\""), std::string::npos);
+    Ran wrong = render_with_bake(" --ibl " + (dir / "bake").string() + " --out " + (dir / "wrong.png").string());
+    EXPECT_EQ(wrong.status, 1) << wrong.output;
+    EXPECT_NE(wrong.output.find((dir / "bake").string() + ": its BRDF LUT is for the thesis BRDF model, the render asks "
+                                                         "for gltf"),
+              std::string::npos)
+        << wrong.output;
+    EXPECT_FALSE(fs::exists(dir / "wrong.png"));
+    Ran right = render_with_bake(" --brdf thesis --ibl " + (dir / "bake").string() + " --out " + (dir / "right.png").string());
+    EXPECT_EQ(right.status, 0) << right.output;
+    EXPECT_NE(read_text(dir / "right.json").find("\"brdf\": \"thesis\""), std::string::npos);
+    Ran bad = render_with_bake(" --brdf phong --ibl " + (dir / "bake").string() + " --out " + (dir / "bad.png").string());
+    EXPECT_EQ(bad.status, 2) << bad.output;
+    EXPECT_NE(bad.output.find("--brdf: expected gltf or thesis, got 'phong'"), std::string::npos) << bad.output;
+}
+
 TEST(RenderBakeCache, ASavedBakeRendersTheSameImageWithoutBaking) {
     TempDir dir("render_ibl");
     Ran fresh = render(" --no-bake-cache --out " + (dir / "fresh.png").string());

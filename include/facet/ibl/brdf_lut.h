@@ -1,9 +1,11 @@
 #pragma once
-// The split-sum BRDF LUT as two compute passes: the scale and bias (A, B) of
-// specular = prefiltered * (F0 * A + B), then the average albedo per roughness for
-// multiscatter compensation in the third channel. Layout fixed in design.md.
+// The split-sum BRDF LUT of one BRDF model as two compute passes: the scale and bias
+// (A, B) of specular = prefiltered * (F0 * A + B) and the diffuse lobe's mean Fresnel
+// weight (fourth channel), then the average albedo per roughness for multiscatter
+// compensation in the third channel. Layout fixed in design.md.
 #include <cstdint>
 
+#include <facet/core/brdf_model.h>
 #include <facet/core/result.h>
 #include <facet/graph/render_graph.h>
 
@@ -11,15 +13,10 @@ namespace facet {
 
 class ProgramCache;
 
-enum class LutVisibility {
-    smith_schlick_ggx,  // the thesis: G_Smith with k = r^2 / 2
-    height_correlated,  // glTF / Heitz 2014
-};
-
 struct BrdfLutSettings {
     uint32_t size = 128;            // width = height
     uint32_t sample_count = 2048;   // Hammersley samples per texel (max abs error < 1e-3)
-    LutVisibility visibility = LutVisibility::smith_schlick_ggx;
+    BrdfModel brdf = BrdfModel::gltf;  // the model whose specular lobe the LUT integrates
 };
 
 // Writes the LUT into `lut` (RGBA32F, settings.size square); returns its final version.

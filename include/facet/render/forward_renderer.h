@@ -45,8 +45,7 @@ struct FrameSettings {
     CameraView camera;               // add_passes only; the passes below take matrices
     DisplaySettings display;
     bool skybox = true;
-    bool height_correlated = false;  // glTF's Smith visibility for punctual lights
-    BrdfModel brdf = BrdfModel::gltf;  // design.md "BRDF models"
+    BrdfModel brdf = BrdfModel::gltf;  // design.md "BRDF models": lights, environment, views
     bool multiscatter = false;       // energy compensation (needs IBL: LUT and irradiance)
     bool dominant_direction = false; // specular lookup bent towards n for rough lobes
     std::vector<Light> lights;       // every punctual light of the frame

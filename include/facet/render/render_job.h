@@ -17,6 +17,7 @@
 #include <facet/ibl/ibl_bake.h>
 #include <facet/render/forward_renderer.h>
 #include <facet/render/reference_renderer.h>
+#include <facet/render/shading_method.h>
 #include <facet/scene/gltf_loader.h>
 #include <facet/scene/scene.h>
 
@@ -43,7 +44,11 @@ struct RenderJob {
     bool gltf_camera = false;  // the file's first camera instead of framing the bounds
     std::vector<Light> extra_lights;
     float ibl_intensity = 1.0f;
+    // How the environment lights surfaces (render/shading_method.h); automatic by default.
+    // The older switches below add their part (to the plain split sum when automatic).
+    ShadingMethod shading = ShadingMethod::automatic;
     bool extract_lights = false;  // suns and lamps out of the map, shaded as disk lights
+    LightExtractionSettings extraction;  // what counts as a light (ibl/light_extraction.h)
     std::string shader_dir;       // read shaders from here (hot reload); empty: embedded (programs: FACET_SHADER_DIR)
     std::string shader_cache_dir; // on-disk SPIR-V cache (apps/shader_cache.h); empty: none
     std::string ibl_dir;          // a saved bake (facet-bake's files) used instead of baking: `env` and the
@@ -114,6 +119,8 @@ public:
     Result<size_t> reload_shaders();
     // IBL methods this environment takes outside their domain (ibl/method_domain.h).
     const std::vector<std::string>& warnings() const;
+    // The shading method in use and why (the automatic choice included).
+    const ShadingChoice& shading() const;
 
     const Scene& scene() const;
     const CameraView& camera() const;

@@ -10,10 +10,10 @@ layout(location = 0) in vec3 n_in;
 layout(location = 1) in vec3 v_in;
 layout(location = 0) out vec4 color;
 void main() {
-    FacetSurface s = facet_surface(normalize(n_in), vec3(0.8), 0.0, 0.5, 0.04, 1.0, 1.0);
+    FacetSurface s = facet_surface(FACET_BRDF_GLTF, normalize(n_in), vec3(0.8), 0.0, 0.5, 0.04, 1.0, 1.0);
     vec3 v = normalize(v_in);
     float NdotV = clamp(dot(s.n, v), 0.0, 1.0);
-    vec3 lut = facet_brdf_lut(my_lut, NdotV, s.roughness);
+    vec4 lut = facet_brdf_lut(my_lut, NdotV, s.roughness);
     FacetEnvironmentLight env = facet_environment_light(s, v, NdotV, lut, my_irradiance, my_specular, 8.0, 1.0, false, false);
     FacetPunctualLight sun;
     sun.type = FACET_LIGHT_DIRECTIONAL;
@@ -21,6 +21,6 @@ void main() {
     sun.intensity = vec3(3.0);
     vec3 l, d, sp;
     vec3 incident = facet_punctual_incidence(sun, vec3(0.0), l);
-    facet_reflect_light(s, v, NdotV, l, incident, k_direct(s.roughness), true, d, sp);
+    facet_reflect_light(s, v, NdotV, l, incident, true, d, sp);
     color = vec4(env.diffuse + env.specular + d + sp, 1.0);
 }

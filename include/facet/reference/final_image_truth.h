@@ -1,0 +1,44 @@
+#pragma once
+// The final image's truth for both BRDF models (design.md "BRDF models"): each model's
+// BRDF times n.l for one light direction, and the outgoing radiance of a surface point
+// under an environment as the double-precision sum over every texel. Written from the
+// equations (glTF 2.0 appendix B with KHR_materials_specular's weight; the thesis'
+// Cook-Torrance), independently of the shaders.
+#include <vector>
+
+#include <facet/core/brdf_model.h>
+#include <facet/reference/ibl_reference.h>
+
+namespace facet::test {
+
+struct TruthMaterial {
+    Vec3 albedo{1, 1, 1};          // glTF baseColor (linear)
+    double metallic = 0, roughness = 0.5;  // perceptual roughness: alpha = roughness^2
+    double dielectric_f0 = 0.04;   // ior 1.5
+    double specular_weight = 1;    // KHR_materials_specular's factor (dielectric part only)
+};
+
+// f(l, v) (n.l) for unit n, v (towards the eye) and l (towards the light); zero when l is
+// below the surface. `punctual` picks the thesis' k = (r+1)^2/8 instead of the
+// environment's r^2/2 (the glTF model has no such switch).
+//  gltf:   D GGX (alpha = max(r^2, 1e-4)), V height-correlated Smith,
+//          dielectric = (1 - w Fd) albedo/pi + w Fd D V, Fd = Schlick(dielectric_f0, v.h),
+//          metal = Schlick(albedo, v.h) D V, f = mix(dielectric, metal, metallic).
+//  thesis: F0 = mix(dielectric_f0, albedo, metallic), F = w' Schlick(F0, v.h) with
+//          w' = mix(specular_weight, 1, metallic), kd = (1 - F)(1 - metallic),
+//          f = kd albedo/pi + F D G / (4 n.l n.v), G Smith with Schlick-GGX.
+Vec3 brdf_cos(BrdfModel model, const TruthMaterial& m, const Vec3& n, const Vec3& v, const Vec3& l,
+              bool punctual = false);
+
+// A prepared environment: every texel's centre direction and radiance x solid angle
+// (texels of zero radiance left out). Build once per environment.
+struct TexelLights {
+    std::vector<Vec3> dir, power;
+};
+TexelLights texel_lights(const Equirect& env);
+
+// Outgoing radiance at a point with unit normal n seen along unit v (towards the eye):
+// the sum of brdf_cos x power over every texel above the surface.
+Vec3 environment_truth(const TexelLights& t, BrdfModel model, const TruthMaterial& m, const Vec3& n, const Vec3& v);
+
+}  // namespace facet::test

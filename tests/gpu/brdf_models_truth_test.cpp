@@ -1,0 +1,164 @@
+// Both BRDF models (design.md "BRDF models") through the whole pipeline, each against its
+// own double-precision truth (facet/reference/final_image_truth.h, written from the
+// equations): punctual lights pixel by pixel, the environment per roughness x metalness
+// group as issue 13 measures it (the forward pass with light extraction and the dominant
+// direction, and the plain split sum), and the reference mode against the same truth.
+// A model mismatch anywhere (LUT, diffuse weight, visibility) shows as 7-16% here.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include <facet/io/image_io.h>
+#include <facet/reference/final_image_accuracy.h>
+#include <facet/render/render_job.h>
+#include "support/gpu_test.h"
+
+namespace facet {
+namespace {
+
+const std::vector<View> kViews = {View::normal, View::position, View::basecolor, View::metallic, View::roughness};
+
+test::FinalImageViews views_of(const RenderedImages& images, const std::vector<float>& hdr) {
+    test::FinalImageViews v;
+    v.width = images.width;
+    v.height = images.height;
+    v.hdr = hdr;
+    v.normal = images.views.at(0).second;
+    v.position = images.views.at(1).second;
+    v.basecolor = images.views.at(2).second;
+    v.metallic = images.views.at(3).second;
+    v.roughness = images.views.at(4).second;
+    return v;
+}
+
+// A sun of 2e4, 2 degrees across (so that 256 texels resolve it), over a sky of about 1:
+// the dynamic range where the split sum fails.
+struct SunSkyFile {
+    test::Equirect env = test::sun_sky(256, 128, 2e4, 2.0, 35.0, 60.0);
+    std::string path = (std::filesystem::temp_directory_path() /
+                        ("facet_models_sun_" + std::to_string(::getpid()) + ".exr")).string();
+    SunSkyFile() { EXPECT_TRUE(write_hdr_image(path, env.w, env.h, env.rgba)); }
+    ~SunSkyFile() { std::filesystem::remove(path); }
+};
+
+RenderJob spheres_job(BrdfModel model, const std::string& env) {
+    RenderJob job;
+    job.model = "builtin:spheres";
+    job.env = env;
+    job.frame.width = job.frame.height = 256;
+    job.frame.skybox = false;
+    job.frame.samples = 1;
+    job.frame.brdf = model;
+    job.frame.views = kViews;
+    return job;
+}
+
+TEST(BrdfModelsTruth, EnvironmentLightingAndReferenceMatchEachModelsTruth) {
+    Context& context = test::gpu();
+    const uint32_t messages = context.validation_message_count();
+    SunSkyFile sky;
+    const test::TexelLights texels = test::texel_lights(sky.env);
+    test::AccuracySettings settings;
+    settings.max_pixels = 1500;
+    for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis}) {
+        const char* name = brdf_model_name(model);
+        struct Config {
+            const char* what;
+            bool extract, dominant, reference;
+            double bound;  // every group's mean relative error below this
+        };
+        // Bounds: measured here times about 1.5 (worst group, gltf / thesis: split sum
+        // 20.4% / 21.5%, extraction + dominant direction 1.7% / 1.8%, the reference at 256
+        // samples 1.7% / 1.7%).
+        const Config configs[] = {{"split sum", false, false, false, 0.35},
+                                  {"extraction + dominant", true, true, false, 0.03},
+                                  {"reference 256 spp", false, false, true, 0.03}};
+        for (const Config& c : configs) {
+            RenderJob job = spheres_job(model, sky.path);
+            job.shading = ShadingMethod::split_sum;
+            job.extract_lights = c.extract;
+            job.frame.dominant_direction = c.dominant;
+            auto session = RenderSession::create(context, job);
+            ASSERT_TRUE(session) << session.error().message;
+            auto frame = (*session)->render_frame();
+            ASSERT_TRUE(frame) << frame.error().message;
+            std::vector<float> hdr = frame->hdr;
+            if (c.reference) {
+                ReferenceSettings rs;
+                rs.min_samples = rs.max_samples = 256;
+                rs.noise_target = 0;
+                auto reference = (*session)->render_reference(rs);
+                ASSERT_TRUE(reference) << reference.error().message;
+                hdr = reference->hdr;
+            }
+            const glm::vec3 e = (*session)->camera().position;
+            const test::FinalImageAccuracy a =
+                test::final_image_accuracy(views_of(*frame, hdr), {e.x, e.y, e.z}, texels, model, settings);
+            std::printf("%s model, %s:\n%s", name, c.what, test::format_accuracy_table(a).c_str());
+            EXPECT_GT(a.pixels, 1000u);
+            for (const test::GroupError& g : a.groups) {
+                EXPECT_GT(g.pixels, 50u) << test::group_name(g);
+                EXPECT_TRUE(std::isfinite(g.mean_rel));
+                EXPECT_LT(g.mean_rel, c.bound) << name << ", " << c.what << ": " << test::group_name(g);
+            }
+        }
+    }
+    EXPECT_EQ(context.validation_message_count(), messages);
+}
+
+// A directional light on every sphere of the grid, no environment: each pixel equals the
+// model's BRDF x cos x E (the thesis with its punctual k = (r+1)^2/8).
+TEST(BrdfModelsTruth, PunctualLightsAreEachModelsBrdf) {
+    Context& context = test::gpu();
+    const uint32_t messages = context.validation_message_count();
+    for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis}) {
+        RenderJob job = spheres_job(model, "none");
+        Light light;
+        light.type = LightType::directional;
+        light.direction = glm::normalize(glm::vec3(-0.4f, -0.5f, -1.0f));
+        light.intensity = 3.0f;
+        job.extra_lights = {light};
+        auto session = RenderSession::create(context, job);
+        ASSERT_TRUE(session) << session.error().message;
+        auto frame = (*session)->render_frame();
+        ASSERT_TRUE(frame) << frame.error().message;
+        const test::FinalImageViews v = views_of(*frame, frame->hdr);
+        const glm::vec3 eye = (*session)->camera().position;
+        const test::Vec3 l{-light.direction.x, -light.direction.y, -light.direction.z};
+        double worst = 0;
+        int checked = 0;
+        for (size_t p = 0; p < size_t(v.width) * v.height; p += 7) {
+            const float* n = &v.normal[p * 4];
+            const float* pos = &v.position[p * 4];
+            if (n[3] < 1.0f || v.hdr[p * 4 + 3] < 1.0f) continue;
+            test::Vec3 view{eye.x - pos[0], eye.y - pos[1], eye.z - pos[2]};
+            const double len = std::sqrt(view[0] * view[0] + view[1] * view[1] + view[2] * view[2]);
+            for (double& c : view) c /= len;
+            const test::Vec3 normal{n[0], n[1], n[2]};
+            const double nv = normal[0] * view[0] + normal[1] * view[1] + normal[2] * view[2];
+            const double nl = normal[0] * l[0] + normal[1] * l[1] + normal[2] * l[2];
+            if (nv < 0.1 || nl < 0.1) continue;
+            test::TruthMaterial m;
+            m.albedo = {v.basecolor[p * 4], v.basecolor[p * 4 + 1], v.basecolor[p * 4 + 2]};
+            m.metallic = v.metallic[p * 4];
+            m.roughness = v.roughness[p * 4];
+            const test::Vec3 f = test::brdf_cos(model, m, normal, view, l, true);
+            for (int c = 0; c < 3; ++c) {
+                const double want = 3.0 * f[size_t(c)];
+                if (want < 1e-3) continue;
+                worst = std::max(worst, std::abs(v.hdr[p * 4 + size_t(c)] - want) / want);
+            }
+            ++checked;
+        }
+        std::printf("%s model, one directional light: %d pixels, worst relative error %.2e\n", brdf_model_name(model),
+                    checked, worst);
+        EXPECT_GT(checked, 1000);
+        EXPECT_LT(worst, 2e-3) << brdf_model_name(model);
+    }
+    EXPECT_EQ(context.validation_message_count(), messages);
+}
+
+}  // namespace
+}  // namespace facet
