@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <stdexcept>
 
 #include <facet/gpu/context.h>
@@ -65,9 +66,13 @@ Status sweep_final_image(Context& context, const test::Equirect& texels, const s
     auto error = [&](const std::string& what, const Error& e) {
         return Error{label + ": image: " + what + ": " + e.message, e.vk_result};
     };
+    const ShadingMethod methods[] = {ShadingMethod::split_sum, ShadingMethod::dominant, ShadingMethod::lights,
+                                     ShadingMethod::lights_dominant, ShadingMethod::automatic};
     for (BrdfModel model : o.brdf_models) {
-        for (ShadingMethod method : {ShadingMethod::split_sum, ShadingMethod::dominant, ShadingMethod::lights,
-                                     ShadingMethod::lights_dominant, ShadingMethod::automatic}) {
+        // Every method's session first; then the timed frames round-robin, so that a shared
+        // machine's changing load falls on every method alike.
+        std::vector<std::unique_ptr<RenderSession>> sessions;
+        for (ShadingMethod method : methods) {
             RenderJob job;
             job.model = "builtin:spheres";
             job.env = file.path.string();
@@ -79,19 +84,26 @@ Status sweep_final_image(Context& context, const test::Equirect& texels, const s
             job.frame.views = {View::normal, View::position, View::basecolor, View::metallic, View::roughness};
             job.shading = method;
             settings.intensity = job.ibl_intensity;
-            const std::string name = shading_method_name(method);
             auto session = RenderSession::create(context, job);
-            if (!session) return error(name, session.error());
+            if (!session) return error(shading_method_name(method), session.error());
             // One frame untimed first: pipelines and images are created on the first.
-            if (auto warm = (*session)->render_frame(true); !warm) return error(name, warm.error());
-            std::vector<double> times;
-            RenderedImages frame;
-            for (int r = 0; r < o.runs; ++r) {
-                auto images = (*session)->render_frame(true);
-                if (!images) return error(name, images.error());
-                times.push_back(frame_ms(*images));
-                frame = std::move(images).value();
+            if (auto warm = (*session)->render_frame(true); !warm) return error(shading_method_name(method), warm.error());
+            sessions.push_back(std::move(session).value());
+        }
+        std::vector<std::vector<double>> times(sessions.size());
+        std::vector<RenderedImages> frames(sessions.size());
+        for (int r = 0; r < o.runs; ++r)
+            for (size_t m = 0; m < sessions.size(); ++m) {
+                auto images = sessions[m]->render_frame(true);
+                if (!images) return error(shading_method_name(methods[m]), images.error());
+                times[m].push_back(frame_ms(*images));
+                frames[m] = std::move(images).value();
             }
+        for (size_t m = 0; m < sessions.size(); ++m) {
+            RenderSession& session = *sessions[m];
+            const RenderedImages& frame = frames[m];
+            const ShadingMethod method = methods[m];
+            const std::string name = shading_method_name(method);
             test::FinalImageViews views{frame.width,
                                         frame.height,
                                         frame.hdr,
@@ -100,7 +112,7 @@ Status sweep_final_image(Context& context, const test::Equirect& texels, const s
                                         view_of(frame, View::basecolor),
                                         view_of(frame, View::metallic),
                                         view_of(frame, View::roughness)};
-            const glm::vec3 eye = (*session)->camera().position;
+            const glm::vec3 eye = session.camera().position;
             auto measure = [&](SweepRow row, const std::vector<float>& hdr) -> Status {
                 row.brdf = brdf_model_name(model);
                 views.hdr = hdr;
@@ -117,10 +129,10 @@ Status sweep_final_image(Context& context, const test::Equirect& texels, const s
                 record(std::move(row));
                 return Ok{};
             };
-            SweepRow row{label, "image", name, "defaults", median(times)};
+            SweepRow row{label, "image", name, "defaults", median(times[m])};
             if (method == ShadingMethod::automatic) {
-                row.auto_choice = shading_method_name((*session)->shading().method);
-                row.auto_reason = (*session)->shading().reason;
+                row.auto_choice = shading_method_name(session.shading().method);
+                row.auto_reason = session.shading().reason;
                 row.params = "picked " + row.auto_choice;
             }
             if (Status s = measure(row, frame.hdr); !s) return s;
@@ -130,7 +142,7 @@ Status sweep_final_image(Context& context, const test::Equirect& texels, const s
             ReferenceSettings warm_up;
             warm_up.min_samples = warm_up.max_samples = 1;
             warm_up.noise_target = 0;
-            if (auto warm = (*session)->render_reference(warm_up); !warm) return error("reference mode", warm.error());
+            if (auto warm = session.render_reference(warm_up); !warm) return error("reference mode", warm.error());
             for (uint32_t spp : o.reference_spp) {
                 ReferenceSettings rs;
                 rs.min_samples = rs.max_samples = spp;
@@ -139,7 +151,7 @@ Status sweep_final_image(Context& context, const test::Equirect& texels, const s
                 std::vector<float> hdr;
                 for (int r = 0; r < o.runs; ++r) {
                     const auto start = std::chrono::steady_clock::now();
-                    auto reference = (*session)->render_reference(rs);
+                    auto reference = session.render_reference(rs);
                     if (!reference) return error("reference mode", reference.error());
                     wall_ms.push_back(
                         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());

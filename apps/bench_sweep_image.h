@@ -4,8 +4,9 @@
 // reference mode at each of SweepOptions::reference_spp samples per pixel, for each BRDF
 // model asked for; each image against the exact integral of its model per roughness x
 // metalness group (reference/final_image_accuracy.h). Renderer and truth read the same
-// texels (written to a temporary .exr). Time: the median wall time over the runs of the
-// frame's passes other than the views ("view ..."), or of render_reference.
+// texels (written to a temporary .exr). Time: the median wall time over the runs (taken
+// round-robin over the methods) of the frame's passes other than the views ("view ..."),
+// or of render_reference.
 #include <functional>
 #include <string>
 
