@@ -159,9 +159,9 @@ def paragraph(method, rows, envs):
             shown = meets or min(env_rows, key=err)
             base = split.get(env, {}).get("gpu_ms", 0)
             cost = f", {shown['gpu_ms'] / base:.0f}x the split sum's frame" if base > 0 else ""
-            parts.append(f"{env}: {pct(target_of(env))} from {shown['samples_per_pixel']} spp{cost}" if meets else
+            parts.append(f"{env}: within {pct(target_of(env))} from {shown['samples_per_pixel']} spp{cost}" if meets else
                          f"{env}: {pct(err(shown))} at {shown['samples_per_pixel']} spp{cost}")
-        text += ("Unbiased, its error is noise falling as 1/sqrt(spp); its environment's target reached at: " +
+        text += ("Unbiased, its error is noise falling as 1/sqrt(spp). Against each environment's target: " +
                  "; ".join(parts) + ".")
         return text
     met3, met5 = envs_meeting(mine, method, 0.03), envs_meeting(mine, method, 0.05)
