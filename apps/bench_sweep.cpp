@@ -17,6 +17,7 @@
 #include <facet/io/atomic_file.h>
 #include <facet/io/image_io.h>
 #include <facet/io/json_writer.h>
+#include "bench_sweep_image.h"
 #include "facet_bench_options.h"
 #include <facet/render/render_job.h>
 #include "shader_cache.h"
@@ -30,12 +31,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Row {
-    std::string env, stage, method, params;
-    double gpu_ms = 0, rel_rmse = 0, max_rel = 0, psnr = 0;
-    bool failed = false;
-    std::string failure;
-};
+using Row = SweepRow;
 
 void finish(const ErrorStats& stats, Row& row, double bound) {
     row.rel_rmse = stats.rel_rmse();
@@ -64,28 +60,64 @@ void downsample_to(EnvironmentSource& env, uint32_t width) {
     env.height = env.image.height = e.h;
 }
 
+// Group columns: issue 13's roughness bands x dielectric/metal, in FinalImageAccuracy's order.
+std::string group_column(size_t g) {
+    static const char* bands[] = {"0.2-0.4", "0.4-0.6", "0.6-0.8", "0.8-1.0"};
+    return std::string("r") + bands[g / 2] + (g % 2 ? " metal" : " dielectric");
+}
+
 std::string csv_of(const std::vector<Row>& rows) {
-    std::string csv = "environment,stage,method,parameters,gpu_ms,rel_rmse,max_rel,psnr_db,failed,failure\n";
+    std::string csv = "environment,stage,method,parameters,gpu_ms,rel_rmse,max_rel,psnr_db,failed,failure,brdf,"
+                      "samples_per_pixel,auto_choice,worst_group_mean_rel,worst_group";
+    for (size_t g = 0; g < 8; ++g) csv += ",\"" + group_column(g) + "\"";
+    csv += "\n";
     for (const Row& r : rows) {
         std::ostringstream line;
         line << '"' << r.env << "\"," << r.stage << ",\"" << r.method << "\",\"" << r.params << "\"," << r.gpu_ms << ','
              << r.rel_rmse << ',' << r.max_rel << ',' << r.psnr << ',' << (r.failed ? 1 : 0) << ",\"" << r.failure
-             << "\"\n";
-        csv += line.str();
+             << "\"," << r.brdf << ',' << r.samples_per_pixel << ',' << r.auto_choice << ',';
+        if (r.accuracy) {
+            const test::FinalImageAccuracy& a = *r.accuracy;
+            line << a.worst_mean_rel << ",\"" << (a.worst >= 0 ? test::group_name(a.groups[size_t(a.worst)]) : "") << '"';
+            for (const test::GroupError& g : a.groups) line << ',' << g.mean_rel;
+        } else {
+            line << ',' << std::string(8, ',');
+        }
+        csv += line.str() + "\n";
     }
     return csv;
 }
 
-std::string json_of(const std::vector<Row>& rows, const std::string& device, uint32_t width, int runs) {
+std::string json_of(const std::vector<Row>& rows, const std::string& device, const SweepOptions& o) {
     JsonWriter j;
     j.begin_object().value("program", "facet-bench sweep").value("version", FACET_VERSION).value("device", device);
-    j.value("environment_width", width).value("runs", runs);
-    j.value("time", "wall time of each setting's passes, each pass its own submission (median of the runs)");
+    j.value("environment_width", o.env_width).value("runs", o.runs);
+    j.value("image_width", o.image_width).value("image_height", o.image_height).value("truth_pixels", o.max_pixels);
+    j.value("time", "wall time of each setting's passes, each pass its own submission (median of the runs); "
+                    "stage image: the frame's passes except the views, or the whole reference-mode call");
+    j.value("image_error", "per roughness x metalness group: mean of |lum(render) - lum(truth)| / lum(truth) "
+                           "against the exact sum over every texel (issue 13); worst_group_mean_rel: the worst group");
     j.begin_array("rows");
     for (const Row& r : rows) {
         j.begin_object().value("environment", r.env).value("stage", r.stage).value("method", r.method);
         j.value("parameters", r.params).value("gpu_ms", r.gpu_ms).value("rel_rmse", r.rel_rmse);
         j.value("max_rel", r.max_rel).value("psnr_db", r.psnr).value("failed", r.failed).value("failure", r.failure);
+        if (r.accuracy) {
+            const test::FinalImageAccuracy& a = *r.accuracy;
+            j.value("brdf", r.brdf).value("samples_per_pixel", r.samples_per_pixel);
+            if (!r.auto_choice.empty()) j.value("auto_choice", r.auto_choice).value("auto_reason", r.auto_reason);
+            j.value("worst_group_mean_rel", a.worst_mean_rel);
+            j.value("worst_group", a.worst >= 0 ? test::group_name(a.groups[size_t(a.worst)]) : std::string("none"));
+            j.value("pixels", uint32_t(a.pixels)).value("truth_seconds", a.truth_seconds);
+            j.begin_array("groups");
+            for (const test::GroupError& g : a.groups) {
+                j.begin_object().value("group", test::group_name(g)).value("metal", g.metal);
+                j.value("roughness_min", g.roughness_min).value("roughness_max", g.roughness_max);
+                j.value("pixels", uint32_t(g.pixels)).value("mean_rel", g.mean_rel).value("max_rel", g.max_rel);
+                j.value("mean_signed", g.mean_signed).end_object();
+            }
+            j.end_array();
+        }
         j.end_object();
     }
     j.end_array().end_object();
@@ -240,100 +272,25 @@ int run_sweep(const cli::Parsed& a) {
                                  row.gpu_ms, row.rel_rmse);
                 }
         }
-        if (has_stage("image")) {
-            // The final image of builtin:spheres with each specular setting against the
-            // reference mode (Monte Carlo to 1% noise or 2048 samples per pixel).
-            const std::string env_file = (fs::temp_directory_path() / ("facet_sweep_env_" + label + ".exr")).string();
-            if (Status st = write_hdr_image(env_file, e.w, e.h, e.rgba); !st) return fail(st.error().message);
-            struct Config {
-                const char* method;
-                std::string params;
-                std::function<void(RenderJob&)> set;
-            };
-            const std::vector<Config> configs = {
-                {"split sum", "defaults", [](RenderJob&) {}},
-                {"split sum", "importance 256", [](RenderJob& j) {
-                     j.ibl.specular.method = SpecularMethod::importance;
-                     j.ibl.specular.sample_count = 256;
-                 }},
-                {"split sum", "mips", [](RenderJob& j) { j.ibl.specular.method = SpecularMethod::mips; }},
-                {"dominant", "defaults", [](RenderJob& j) { j.frame.dominant_direction = true; }},
-                {"extraction", "defaults", [](RenderJob& j) { j.extract_lights = true; }},
-                {"extraction+dominant", "defaults", [](RenderJob& j) {
-                     j.extract_lights = true;
-                     j.frame.dominant_direction = true;
-                 }},
-            };
-            RenderJob base;
-            base.model = "builtin:spheres";
-            base.env = env_file;
-            base.frame.width = base.frame.height = 140;
-            base.frame.skybox = false;
-            base.frame.views = {View::position};
-            base.shading = ShadingMethod::split_sum;  // the configurations add to it
-            std::vector<float> reference;
-            for (const Config& c : configs) {
-                RenderJob job = base;
-                c.set(job);
-                auto session = RenderSession::create(context, job);
-                if (!session) return fail(session.error().message);
-                if (reference.empty()) {
-                    ReferenceSettings rs;
-                    rs.max_samples = 2048;
-                    auto ref = (*session)->render_reference(rs);
-                    if (!ref) return fail(ref.error().message);
-                    reference = ref->hdr;
-                }
-                std::vector<double> times;
-                std::vector<float> image;
-                std::vector<std::pair<View, std::vector<float>>> frame_views;
-                for (int r = 0; r < runs; ++r) {
-                    auto frame = (*session)->render_frame(true);
-                    if (!frame) return fail(frame.error().message);
-                    double ms = 0;
-                    for (const PassTiming& t : frame->pass_wall)
-                        if (t.name.rfind("view ", 0) != 0) ms += t.time_ms;
-                    times.push_back(ms);
-                    image = frame->hdr;
-                    frame_views = frame->views;
-                }
-                ErrorStats stats;
-                for (size_t i = 0; i + 3 < image.size(); i += 4)
-                    if (reference[i + 3] >= 1.0f && image[i + 3] >= 1.0f)
-                        stats.add({reference[i], reference[i + 1], reference[i + 2]}, &image[i], 0.01);
-                // Per roughness, for the dielectric (bottom) and metal (top) rows: the split
-                // sum before and after light extraction (stage "extraction").
-                if (c.params == std::string("defaults") &&
-                    (c.method == std::string("split sum") || c.method == std::string("extraction"))) {
-                    const std::vector<float>& positions = frame_views.at(0).second;
-                    for (int row : {0, 6})
-                        for (int col = 0; col < 7; ++col) {
-                            ErrorStats sphere;
-                            for (size_t i = 0; i + 3 < image.size(); i += 4) {
-                                if (reference[i + 3] < 1.0f || image[i + 3] < 1.0f) continue;
-                                const int sc = int(std::lround(positions[i] / 2.5 + 3)),
-                                          sr = int(std::lround(positions[i + 1] / 2.5 + 3));
-                                if (sc == col && sr == row)
-                                    sphere.add({reference[i], reference[i + 1], reference[i + 2]}, &image[i], 0.01);
-                            }
-                            Row r{label, "extraction", std::string(c.method) + (row ? ", metal" : ", dielectric"),
-                                  "roughness " + std::to_string(col) + "/6", 0.0};
-                            finish(sphere, r, 10.0);
-                            rows.push_back(r);
-                        }
-                }
-                // Frame time: wall time of its passes (lavapipe's compute timestamps undercount).
-                record({"", "image", c.method, c.params, median(times)}, stats, 0.25);
-            }
-            fs::remove(env_file);
-        }
+        if (has_stage("image"))
+            if (Status st = sweep_final_image(context, e, label, options, [&](SweepRow row) {
+                    const test::FinalImageAccuracy& a = *row.accuracy;
+                    std::fprintf(stderr, "facet-bench:   image %-6s %-16s %-22s %9.2f ms  worst group %6.2f%% (%s)%s\n",
+                                 row.brdf.c_str(), row.method.c_str(), row.params.c_str(), row.gpu_ms,
+                                 100 * a.worst_mean_rel,
+                                 a.worst >= 0 ? test::group_name(a.groups[size_t(a.worst)]).c_str() : "none",
+                                 row.failed ? ("  FAILED: " + row.failure).c_str() : "");
+                    rows.push_back(std::move(row));
+                });
+                !st)
+                return fail(st.error().message);
     }
     std::error_code ec;
     fs::create_directories(out_dir, ec);
     if (Status s = write_text_file((fs::path(out_dir) / "sweep.csv").string(), csv_of(rows)); !s)
         return fail(s.error().message);
     if (Status s = write_text_file((fs::path(out_dir) / "sweep.json").string(),
-                                   json_of(rows, context.device_name(), width, runs));
+                                   json_of(rows, context.device_name(), options));
         !s)
         return fail(s.error().message);
     std::printf("wrote %s/sweep.csv and sweep.json (%zu rows); charts: /usr/bin/python3 scripts/chart.py %s\n",

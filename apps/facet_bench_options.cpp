@@ -26,7 +26,11 @@ void add_render_bench_options(cli::Parser& parser) {
 void add_sweep_options(cli::Parser& parser) {
     parser.option("--out", "DIR", "sweep: where sweep.csv and sweep.json go (default bench-out)")
         .option("--env-width", "N", "sweep: environments are downsampled to this width (default 256)")
-        .option("--stages", "LIST", "sweep: irradiance,specular,lut,image (default all)");
+        .option("--stages", "LIST", "sweep: irradiance,specular,lut,image (default all)")
+        .option("--size", "WxH", "sweep: the final image's size (default 320x320)")
+        .option("--brdf-models", "LIST", "sweep: gltf,thesis: the final image's BRDF models (default gltf)")
+        .option("--pixels", "N", "sweep: pixels of the final image the truth is computed for (default 4000)")
+        .option("--spp", "LIST", "sweep: the reference mode's samples per pixel (default 1,4,16,64)");
 }
 
 }  // namespace
@@ -40,9 +44,10 @@ std::optional<BenchOptions> parse_bench_options(int argc, char** argv) {
                        "can be passed with --bake-args.\n"
                        "render: renders --frames frames of a model (IBL baked once) and prints the\n"
                        "median GPU time of every pass and of the frame, and the wall time per frame.\n"
-                       "sweep: every IBL method and parameter and the final image against the\n"
-                       "reference mode, on each ENV (default builtin:sky): time and error against\n"
-                       "brute-force truth, to sweep.csv/json; scripts/chart.py draws the charts.\n"
+                       "sweep: every IBL method and parameter, and the final image with every shading\n"
+                       "method and the reference mode at 1-64 samples per pixel, on each ENV (default\n"
+                       "builtin:sky): time and error against brute-force truth (the image per\n"
+                       "roughness x metalness group), to sweep.csv/json; scripts/chart.py draws the charts.\n"
                        "accuracy: the final image against the exact integral of its BRDF model, per\n"
                        "roughness x metalness group (see facet-bench accuracy --help).");
     parser.option("--runs", "N", "bakes per environment (default 5)")
@@ -147,8 +152,46 @@ std::optional<AccuracyOptions> parse_accuracy_options(int argc, char** argv) {
     return o;
 }
 
+namespace {
+
+// "a,b,c" -> {"a", "b", "c"}; an empty entry is an error naming the option.
+std::vector<std::string> split_list(const std::string& list, const char* option) {
+    std::vector<std::string> items;
+    for (size_t begin = 0, end; begin <= list.size(); begin = end + 1) {
+        end = std::min(list.find(',', begin), list.size());
+        items.push_back(list.substr(begin, end - begin));
+        if (items.back().empty()) throw std::invalid_argument(std::string(option) + ": empty entry in '" + list + "'");
+    }
+    return items;
+}
+
+}  // namespace
+
 SweepOptions parse_sweep_options(const cli::Parsed& a) {
     SweepOptions o;
+    if (a.has("--size")) {
+        unsigned w = 0, h = 0;
+        char extra;
+        if (std::sscanf(a.get("--size").c_str(), "%ux%u%c", &w, &h, &extra) != 2 || w < 8 || h < 8 || w > 8192 ||
+            h > 8192)
+            throw std::invalid_argument("--size: expected WxH (8..8192 each), got '" + a.get("--size") + "'");
+        o.image_width = w;
+        o.image_height = h;
+    }
+    if (a.has("--brdf-models")) {
+        o.brdf_models.clear();
+        for (const std::string& name : split_list(a.get("--brdf-models"), "--brdf-models")) {
+            const auto model = parse_brdf_model(name);
+            if (!model) throw std::invalid_argument("--brdf-models: expected gltf or thesis, got '" + name + "'");
+            o.brdf_models.push_back(*model);
+        }
+    }
+    if (a.has("--pixels")) o.max_pixels = uint32_t(cli::parse_int(a.get("--pixels"), "--pixels", 1, 1 << 24));
+    if (a.has("--spp")) {
+        o.reference_spp.clear();
+        for (const std::string& n : split_list(a.get("--spp"), "--spp"))
+            o.reference_spp.push_back(uint32_t(cli::parse_int(n, "--spp", 1, 65536)));
+    }
     o.envs.assign(a.positional.begin() + (a.positional.empty() ? 0 : 1), a.positional.end());
     if (o.envs.empty()) o.envs = {"builtin:sky"};
     o.stages = a.get("--stages", o.stages);

@@ -34,6 +34,12 @@ struct SweepOptions {
     int runs = 3;
     std::string stages = "irradiance,specular,lut,image";
     std::string out_dir = "bench-out";
+    // Stage "image" (apps/bench_sweep_image.h): frame size, BRDF models, the truth's pixel
+    // budget and the reference mode's samples per pixel.
+    uint32_t image_width = 320, image_height = 320;
+    std::vector<BrdfModel> brdf_models{BrdfModel::gltf};
+    uint32_t max_pixels = 4000;
+    std::vector<uint32_t> reference_spp{1, 4, 16, 64};
 };
 // Throws std::invalid_argument naming the option.
 SweepOptions parse_sweep_options(const cli::Parsed& args);

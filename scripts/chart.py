@@ -1,9 +1,13 @@
 #!/usr/bin/python3
-"""Charts and a report from facet-bench sweep's sweep.json: for each stage (irradiance,
-specular, lut, image) error against GPU time, log-log, one series per method (each point a
+"""Charts and a report from facet-bench sweep's sweep.json: for each bake stage (irradiance,
+specular, lut) error against GPU time, log-log, one series per method (each point a
 parameter setting, the median over the environments), the Pareto front marked, and
 settings that fail anywhere (NaN, Inf, negative values, error above the bound) drawn as
-crosses. Writes DIR/chart_<stage>.svg and .png and DIR/report.md.
+crosses. The final image (stage "image", chart_image.py): one panel per environment, the
+worst roughness x metalness group's error against frame time for every shading method and
+the reference mode's samples per pixel, the Pareto front and the automatic choice starred.
+Writes DIR/chart_<stage>.svg and .png (the image chart: PNG only, one per BRDF model) and
+DIR/report.md.
 
 Usage: /usr/bin/python3 scripts/chart.py DIR   (Debian's python3-matplotlib)
 """
@@ -17,6 +21,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from chart_image import image_section  # noqa: E402
+
 # One sentence per method on what it is; the numbers in the report come from the data.
 DESCRIPTIONS = {
     "convolve": "exact cosine (or GGX) sum over blocks of the input's own texels, each with its exact power",
@@ -29,17 +35,11 @@ DESCRIPTIONS = {
     "filtered": "GGX importance sampling that reads a mip matched to each sample's solid angle (Krivanek-Colbert)",
     "mips": "the environment's own box-filtered mip chain, one level per roughness",
     "automatic": "filtered importance sampling for smooth levels, texel-block convolution from roughness 0.3",
-    "split sum": "the forward pass with the split sum (prefiltered cube x LUT)",
-    "dominant": "the split sum with the lookup bent towards n for rough lobes (Frostbite)",
-    "extraction": "suns and lamps taken out of the map and shaded as disk lights; the rest through the split sum",
-    "extraction+dominant": "light extraction and the dominant direction together",
 }
 STAGE_TITLES = {
-    "extraction": "Light extraction: error against the reference mode per roughness (builtin:spheres rows)",
     "irradiance": "Diffuse irradiance: error against the brute-force integral",
     "specular": "Specular prefilter (every level): error against the brute-force GGX integral",
     "lut": "Split-sum LUT: error against quadrature",
-    "image": "Final image of builtin:spheres: error against the reference mode",
 }
 
 
@@ -108,33 +108,6 @@ def chart(stage, points, front, out_dir):
     plt.close(fig)
 
 
-def roughness_chart(rows, out_dir):
-    """Error against roughness, split sum alone and with light extraction, dielectric and
-    metal rows; one panel per environment."""
-    envs = sorted({r["environment"] for r in rows})
-    fig, axes = plt.subplots(1, len(envs), figsize=(3.2 * len(envs), 3.6), squeeze=False, sharey=True)
-    styles = {"split sum, dielectric": ("tab:blue", "--"), "split sum, metal": ("tab:red", "--"),
-              "extraction, dielectric": ("tab:blue", "-"), "extraction, metal": ("tab:red", "-")}
-    for ax, env in zip(axes[0], envs):
-        for method, (color, style) in styles.items():
-            mine = [r for r in rows if r["environment"] == env and r["method"] == method]
-            mine.sort(key=lambda r: r["parameters"])
-            xs = [int(r["parameters"].split()[1].split("/")[0]) / 6 for r in mine]
-            ax.plot(xs, [max(r["rel_rmse"], 1e-4) for r in mine], style, color=color, marker="o", markersize=3,
-                    label=method)
-        ax.set_title(env, fontsize=8)
-        ax.set_yscale("log")
-        ax.set_xlabel("roughness", fontsize=8)
-        ax.grid(True, which="both", alpha=0.3)
-    axes[0][0].set_ylabel("relative RMS error")
-    axes[0][0].legend(fontsize=6)
-    fig.suptitle(STAGE_TITLES["extraction"], fontsize=9)
-    fig.tight_layout()
-    for ext in ("svg", "png"):
-        fig.savefig(os.path.join(out_dir, f"chart_extraction.{ext}"), dpi=110)
-    plt.close(fig)
-
-
 def paragraph(method, points, front):
     mine = [p for p in points if p["method"] == method]
     best = min(mine, key=lambda p: p["rel_rmse"])
@@ -174,10 +147,7 @@ def main():
              f"`facet-bench sweep` on {data['device']}, environments downsampled to {data['environment_width']} "
              f"texels wide, {data['runs']} runs per setting (medians). Environments: "
              f"{', '.join(sorted({r['environment'] for r in rows if r['environment'] != 'any'}))}.", ""]
-    extraction = [r for r in rows if r["stage"] == "extraction"]
-    if extraction:
-        roughness_chart(extraction, out_dir)
-    for stage in ("irradiance", "specular", "lut", "image"):
+    for stage in ("irradiance", "specular", "lut"):
         stage_rows = [r for r in rows if r["stage"] == stage]
         if not stage_rows:
             continue
@@ -187,17 +157,9 @@ def main():
         lines += [f"## {STAGE_TITLES[stage]}", "", f"![{stage}](chart_{stage}.png)", ""]
         for method in sorted({p["method"] for p in points}):
             lines += [paragraph(method, points, front), ""]
-    if extraction:
-        lines += [f"## {STAGE_TITLES['extraction']}", "", "![extraction](chart_extraction.png)", "",
-                  "| environment | material | roughness | split sum | with extraction |", "|---|---|---|---|---|"]
-        for r in sorted((r for r in extraction if r["method"].startswith("split sum")),
-                        key=lambda r: (r["environment"], r["method"], r["parameters"])):
-            material = r["method"].split(", ")[1]
-            after = next(x for x in extraction if x["environment"] == r["environment"] and
-                         x["method"] == "extraction, " + material and x["parameters"] == r["parameters"])
-            lines.append(f"| {r['environment']} | {material} | {r['parameters'].split()[1]} | "
-                         f"{100 * r['rel_rmse']:.1f}% | {100 * after['rel_rmse']:.1f}% |")
-        lines.append("")
+    image_rows = [r for r in rows if r["stage"] == "image"]
+    if image_rows:
+        lines += image_section(image_rows, data, out_dir)
     report = os.path.join(out_dir, "report.md")
     with open(report + ".tmp", "w") as f:
         f.write("\n".join(lines))
