@@ -116,6 +116,7 @@ void draw_panels(ViewerControls& c) {
     double bake_ms = 0;
     for (const PassTiming& t : c.bake_passes) bake_ms += t.time_ms;
     ImGui::Text("bake %.0f ms GPU", bake_ms);
+    ImGui::TextWrapped("shading: %s", c.shading.c_str());
     for (const std::string& w : c.warnings) ImGui::TextColored(ImVec4(1.0f, 0.7f, 0.3f, 1.0f), "%s", w.c_str());
     ImGui::SliderFloat("exposure", &c.display.exposure, 0.01f, 16.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
     int tonemap = int(c.display.tonemap);

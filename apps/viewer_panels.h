@@ -34,6 +34,7 @@ struct ViewerControls {
     // Shown, not edited.
     std::vector<PassTiming> frame_passes, bake_passes;
     std::vector<std::string> warnings;  // IBL methods outside their domain
+    std::string shading;                // the shading method in use and why (the automatic choice)
     double frame_ms = 0;
     std::string status;
 };

@@ -31,10 +31,15 @@ std::vector<std::string> bake_warnings(const EnvironmentSource& analysed, const 
     return method_warnings(environment_stats(analysed.image.rgba, analysed.width, analysed.height), resolved);
 }
 
+// What a bake makes of the same input and settings: bumped with every change to the
+// passes or their rules (the LUT's channels, light extraction, the split level), so that
+// a bake cache never hands out an entry made by older code of the same version number.
+constexpr const char* kBakeRevision = "bake revision 3: BRDF models, lights of wide regions";
+
 std::string bake_key(const EnvironmentSource& s, const BakeSettings& b) {
     const IblSettings& o = b.ibl;
     Hash64 h;
-    h.add(FACET_VERSION).add(s.content_hash);
+    h.add(FACET_VERSION).add(kBakeRevision).add(s.content_hash);
     const double values[] = {double(s.width), double(s.height), double(o.cube_size), double(o.specular.levels),
                              double(b.preview_exposure), double(int(o.irradiance.method)), double(o.irradiance.size),
                              double(o.irradiance.source_size), o.irradiance.riemann_step, o.irradiance.blur_sigma,

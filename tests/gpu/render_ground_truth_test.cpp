@@ -182,16 +182,16 @@ TEST(RenderGroundTruth, LightExtractionCutsTheSplitSumErrorUnderASun) {
     struct Case {
         const char* name;
         test::Equirect env;
-        int lights;         // expected number of extracted lights (-1: any)
-        bool must_improve;  // rough metals at least 4x better
+        int lights;      // expected number of extracted lights (-1: any)
+        double improve;  // rough metals' error at most this fraction of the split sum's (0: no bound)
     };
     // Synthetic: a sun of 2e4 radiance 2 degrees across over a sky of about 1. Studio: its
-    // softbox (5 degrees, 70% of the power) is too wide to be a disk, so it stays.
-    const Case cases[] = {{"sun sky", test::sun_sky(256, 128, 2e4, 2.0, 35.0, 60.0), 1, true},
-                          {"royal_esplanade", shared_environment("royal_esplanade_1k.hdr", 4), 3, true},
-                          {"venice_sunset", shared_environment("venice_sunset_1k.hdr", 4), 1, false},
-                          {"studio", shared_environment("studio_small_03_1k.hdr", 4), 0, false},
-                          {"warehouse", shared_environment("empty_warehouse_01_1k.hdr", 4), -1, false}};
+    // softboxes (70% of the power) are wider than one light: split into 5 disks.
+    const Case cases[] = {{"sun sky", test::sun_sky(256, 128, 2e4, 2.0, 35.0, 60.0), 1, 0.25},
+                          {"royal_esplanade", shared_environment("royal_esplanade_1k.hdr", 4), 3, 0.25},
+                          {"venice_sunset", shared_environment("venice_sunset_1k.hdr", 4), 1, 0},
+                          {"studio", shared_environment("studio_small_03_1k.hdr", 4), 5, 0.4},
+                          {"warehouse", shared_environment("empty_warehouse_01_1k.hdr", 4), -1, 0.75}};
     std::printf("environment      roughness  dielectric before/after   metal before/after\n");
     for (const Case& c : cases) {
         EnvironmentFile file(c.env, c.name[0] == 's' && c.name[1] == 'u' ? "sunsky" : c.name);
@@ -220,9 +220,9 @@ TEST(RenderGroundTruth, LightExtractionCutsTheSplitSumErrorUnderASun) {
                     before_rough / 3, after_rough / 3);
         if (c.lights >= 0) EXPECT_EQ(lights, size_t(c.lights)) << c.name;
         // Where the lights carry much of the power, rough metals improve several times
-        // (measured: sun sky 27% -> 0.7%, royal_esplanade 39% -> 6%; venice's sun holds
-        // only 2% of its power: 14% -> 12%).
-        if (c.must_improve) EXPECT_LT(after_rough, 0.25 * before_rough) << c.name << ": rough metals";
+        // (measured: sun sky 27% -> 0.7%, royal_esplanade 39% -> 6%, studio 112% -> 29%,
+        // warehouse 14% -> 8%; venice's sun holds only 2% of its power: 14% -> 12%).
+        if (c.improve > 0) EXPECT_LT(after_rough, c.improve * before_rough) << c.name << ": rough metals";
     }
     EXPECT_EQ(context.validation_message_count(), messages);
 }

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <functional>
 #include <map>
 
@@ -15,6 +16,7 @@
 #include <facet/ibl/irradiance.h>
 #include <facet/ibl/method_domain.h>
 #include <facet/ibl/specular.h>
+#include <facet/io/image_io.h>
 #include <facet/render/render_job.h>
 #include <facet/scene/builtin_scenes.h>
 #include "support/gpu_test.h"
@@ -25,6 +27,14 @@ namespace facet {
 namespace {
 
 using test::CubeLevels;
+
+// A file in the temporary folder, removed with the object.
+struct TempFile {
+    std::string path;
+    explicit TempFile(const std::string& name)
+        : path((std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name)).string()) {}
+    ~TempFile() { std::filesystem::remove(path); }
+};
 using test::Equirect;
 using test::Vec3;
 
@@ -234,49 +244,78 @@ TEST_F(StabilityTest, SpecularMethodsNeverFailSilently) {
 }
 
 // The forward pass where shading formulas divide by small numbers: roughness 0, 1e-4
-// and 1, silhouettes (n.v -> 0), a plane seen at 0.5 degrees, under a 1e5 sun, with a
-// light; every pixel of the image and of every view finite and non-negative.
+// and 1 (dielectric and metal spheres), silhouettes (n.v -> 0), a plane seen at 0.5
+// degrees, with a light of 1e3, for both BRDF models and the shading methods that sum or
+// sample (the automatic choice, lights with the dominant direction, lights with sampled
+// rough lobes), under the built-in sky, a 0.5-degree sun of 1e5, the studio's softboxes,
+// a black and a uniform environment: every pixel of the image and of every view finite
+// and non-negative. The automatic choice depends on the environment alone: the same for
+// both views of one environment.
 TEST_F(StabilityTest, ShadingAtRoughnessZeroAndGrazingAnglesStaysFinite) {
-    for (float roughness : {0.0f, 1e-4f, 1.0f})
-        for (float elevation : {0.5f, 30.0f}) {
-            Scene scene = builtin_scene("builtin:sphere").value();
-            scene.materials[0].roughness = roughness;
-            scene.materials.push_back(scene.materials[0]);
-            scene.materials.back().metallic = 1.0f;
-            const uint32_t metal = add_sphere_primitive(scene, 1);
-            Instance second;
-            second.primitive = metal;
-            second.world[3] = glm::vec4(2.5f, 0.0f, 0.0f, 1.0f);
-            scene.instances.push_back(second);
-            RenderJob job;
-            job.env = "builtin:sky";
-            job.env_width = 128;
-            job.ibl.specular.sample_count = 128;
-            job.ibl.lut.size = 32;
-            job.ibl.lut.sample_count = 256;
-            job.frame.width = 64;
-            job.frame.height = 48;
-            job.orbit = std::array<float, 3>{20.0f, elevation, 6.0f};
-            job.target = glm::vec3(1.25f, 0.0f, 0.0f);
-            job.frame.views = {View::D, View::F, View::G, View::diffuse, View::specular, View::prefiltered};
-            Light light;
-            light.direction = glm::normalize(glm::vec3(0.3f, -0.2f, -1.0f));
-            light.intensity = 1e3f;
-            job.extra_lights = {light};
-            job.extract_lights = elevation > 1.0f;
-            auto session = RenderSession::create(ctx(), job, scene);
-            ASSERT_TRUE(session) << session.error().message;
-            auto images = (*session)->render_frame();
-            ASSERT_TRUE(images) << images.error().message;
-            auto all_fine = [](const std::vector<float>& v) {
-                for (float x : v)
-                    if (!std::isfinite(x) || x < 0) return false;
-                return true;
-            };
-            EXPECT_TRUE(all_fine(images->hdr)) << "roughness " << roughness << ", elevation " << elevation;
-            for (auto& [view, texels] : images->views)
-                EXPECT_TRUE(all_fine(texels)) << view_name(view) << ", roughness " << roughness;
-        }
+    Scene scene = builtin_scene("builtin:sphere").value();
+    const Material base = scene.materials[0];
+    scene.materials.clear();
+    scene.instances.clear();
+    const float roughness[] = {0.0f, 1e-4f, 1.0f};
+    for (int i = 0; i < 6; ++i) {
+        Material m = base;
+        m.roughness = roughness[i % 3];
+        m.metallic = i < 3 ? 0.0f : 1.0f;
+        scene.materials.push_back(m);
+        Instance instance;
+        instance.primitive = add_sphere_primitive(scene, uint32_t(i), 32, 16);
+        instance.world[3] = glm::vec4(2.5f * float(i % 3), 2.5f * float(i / 3), 0.0f, 1.0f);
+        scene.instances.push_back(instance);
+    }
+    TempFile sun("facet_stability_sun.exr"), black("facet_stability_black.exr");
+    const Equirect sun_env = test::sun_sky(256, 128, 1e5, 0.5, 20.0, 40.0), black_env = test::uniform_sky(64, 32, 0.0f);
+    ASSERT_TRUE(write_hdr_image(sun.path, sun_env.w, sun_env.h, sun_env.rgba));
+    ASSERT_TRUE(write_hdr_image(black.path, black_env.w, black_env.h, black_env.rgba));
+    const std::string envs[] = {"builtin:sky", sun.path, FACET_SHARED_DATA_DIR "/env/studio_small_03_1k.hdr", black.path,
+                                "builtin:white"};
+    for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis})
+        for (ShadingMethod method : {ShadingMethod::automatic, ShadingMethod::lights_dominant, ShadingMethod::lights_sampled})
+            for (const std::string& env : envs) {
+                std::string first_choice;
+                for (float elevation : {0.5f, 30.0f}) {
+                    RenderJob job;
+                    job.env = env;
+                    job.env_width = 128;
+                    job.max_env_width = 256;
+                    job.ibl.specular.sample_count = 128;
+                    job.ibl.lut.size = 32;
+                    job.ibl.lut.sample_count = 256;
+                    job.frame.width = 64;
+                    job.frame.height = 48;
+                    job.frame.brdf = model;
+                    job.shading = method;
+                    job.orbit = std::array<float, 3>{20.0f, elevation, 9.0f};
+                    job.target = glm::vec3(2.5f, 1.25f, 0.0f);
+                    job.frame.views = {View::D, View::F, View::G, View::diffuse, View::specular, View::prefiltered};
+                    Light light;
+                    light.direction = glm::normalize(glm::vec3(0.3f, -0.2f, -1.0f));
+                    light.intensity = 1e3f;
+                    job.extra_lights = {light};
+                    auto session = RenderSession::create(ctx(), job, scene);
+                    ASSERT_TRUE(session) << session.error().message;
+                    auto images = (*session)->render_frame();
+                    ASSERT_TRUE(images) << images.error().message;
+                    const std::string what = std::string(brdf_model_name(model)) + ", " +
+                                             shading_method_name((*session)->shading().method) + ", " + env +
+                                             ", elevation " + std::to_string(elevation);
+                    auto all_fine = [](const std::vector<float>& v) {
+                        for (float x : v)
+                            if (!std::isfinite(x) || x < 0) return false;
+                        return true;
+                    };
+                    EXPECT_TRUE(all_fine(images->hdr)) << what;
+                    for (auto& [view, texels] : images->views) EXPECT_TRUE(all_fine(texels)) << view_name(view) << ", " << what;
+                    const std::string choice = std::string(shading_method_name((*session)->shading().method)) + ": " +
+                                               (*session)->shading().reason;
+                    if (first_choice.empty()) first_choice = choice;
+                    EXPECT_EQ(choice, first_choice) << what;
+                }
+            }
 }
 
 }  // namespace

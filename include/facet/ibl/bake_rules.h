@@ -22,8 +22,10 @@ IblSettings ibl_settings_for_scene(IblSettings requested, const SceneNeeds& need
 
 // With extracted lights, specular levels whose GGX lobe (alpha = roughness^2) is narrower
 // than the widest light's angular radius come from the whole environment (their split
-// sum sees the lights as they are); the disks take over from the first level that is
-// wider. 0 without lights. The frame's FrameSettings::environment_light_level must be
+// sum sees the lights as they are: the shapes of windows and softboxes, which their
+// disks only approximate); the disks take over from the first level that is wider.
+// (Half the radius, tried, made metals of roughness 1/6 three times worse under
+// empty_warehouse_01, whose windows become several disks.) 0 without lights. The frame's FrameSettings::environment_light_level must be
 // this value for the bake it samples.
 uint32_t light_split_level(std::span<const DiskLight> lights, uint32_t specular_levels);
 

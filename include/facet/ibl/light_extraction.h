@@ -27,9 +27,9 @@ struct LightExtractionSettings {
     double min_ratio_to_median = 50.0;
     double min_ratio_to_peak = 0.02;
     double max_solid_angle = 0.01;        // steradians of one light (a cap of about 3.2 degrees radius)
-    double max_region_solid_angle = 0.01; // wider regions are split into lights of max_solid_angle each, up to this
+    double max_region_solid_angle = 0.3; // wider regions are split into lights of max_solid_angle each, up to this
     double min_power_fraction = 0.02;     // smaller lights stay in the map
-    uint32_t max_lights = 4;
+    uint32_t max_lights = 8;
 };
 
 struct LightExtraction {
