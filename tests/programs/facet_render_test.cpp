@@ -151,7 +151,9 @@ TEST(FacetRender, WritesPngExrJsonAndViews) {
     const std::string json((std::istreambuf_iterator<char>(json_in)), {});
     for (const char* key : {"\"camera\"", "\"position\"", "\"target\"", "\"up\"", "\"yfov_deg\"", "\"width\": 96",
                             "\"height\": 72", "\"content_hash\"", "\"exposure\"", "\"tonemap\": \"reinhard\"",
-                            "\"gamma\": \"sRGB\"", "\"version\"", "\"builtin:sky\"", "sphere.normal.exr"})
+                            "\"gamma\": \"sRGB\"", "\"version\"", "\"builtin:sky\"", "sphere.normal.exr",
+                            "\"brdf\": \"gltf\"", "\"requested\": \"auto\"", "\"method\": \"lights+dominant\"",
+                            "\"reason\": \"1 light(s) extracted"})
         EXPECT_NE(json.find(key), std::string::npos) << key << "\n" << json;
     const Pixels ldr = read_pixels(dir / "sphere.png");
     EXPECT_EQ(ldr.width, 96);
