@@ -86,7 +86,6 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     define_if(settings.brdf == BrdfModel::thesis, "BRDF_THESIS");
     define_if(ibl && settings.multiscatter, "MULTISCATTER");
     define_if(ibl && settings.dominant_direction, "DOMINANT_DIRECTION");
-    define_if(ibl && settings.sampled_specular, "SAMPLED_SPECULAR");
     defines.push_back({"VIEW", std::to_string(int(view))});
 
     Pipeline::GraphicsDesc desc;

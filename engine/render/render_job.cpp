@@ -202,7 +202,6 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
         }
         finish_shading_choice(s->shading, s->baked->lights().size(), m.extracted_power_fraction);
         s->frame.dominant_direction = s->shading.job.frame.dominant_direction;
-        s->frame.sampled_specular = s->shading.job.frame.sampled_specular;
         say("shading: " + std::string(shading_method_name(s->shading.choice.method)) + " (" + s->shading.choice.reason + ")");
         for (const std::string& note : m.format_notes) say(note);
         s->ibl_settings = m.settings;

@@ -12,7 +12,6 @@ ResolvedShading resolve_shading(const RenderJob& requested) {
     if (requested.extract_lights || requested.frame.dominant_direction) {
         // The older switches add their part to the method (to the plain split sum when
         // automatic).
-        if (method == ShadingMethod::lights_sampled) method = ShadingMethod::lights_dominant;  // the switches name the older ones
         const bool lights = requested.extract_lights || method == ShadingMethod::lights ||
                             method == ShadingMethod::lights_dominant;
         const bool dominant = requested.frame.dominant_direction || method == ShadingMethod::dominant ||
@@ -30,11 +29,8 @@ ResolvedShading resolve_shading(const RenderJob& requested) {
         r.choice.reason = "no environment";
         return r;
     }
-    r.job.extract_lights = method == ShadingMethod::lights || method == ShadingMethod::lights_dominant ||
-                           method == ShadingMethod::lights_sampled;
-    r.job.frame.dominant_direction = method == ShadingMethod::dominant || method == ShadingMethod::lights_dominant ||
-                                     method == ShadingMethod::lights_sampled;
-    r.job.frame.sampled_specular = method == ShadingMethod::lights_sampled;
+    r.job.extract_lights = method == ShadingMethod::lights || method == ShadingMethod::lights_dominant;
+    r.job.frame.dominant_direction = method == ShadingMethod::dominant || method == ShadingMethod::lights_dominant;
     r.choice.method = method;
     r.choice.reason = "requested";
     return r;

@@ -2,17 +2,17 @@
 
 namespace facet {
 namespace {
-constexpr const char* names[] = {"auto", "split-sum", "dominant", "lights", "lights+dominant", "lights+sampled"};
+constexpr const char* names[] = {"auto", "split-sum", "dominant", "lights", "lights+dominant"};
 }  // namespace
 
 const char* shading_method_name(ShadingMethod method) { return names[static_cast<int>(method)]; }
 
 std::optional<ShadingMethod> parse_shading_method(std::string_view name) {
-    for (int i = 0; i < 6; ++i)
+    for (int i = 0; i < 5; ++i)
         if (name == names[i]) return static_cast<ShadingMethod>(i);
     return std::nullopt;
 }
 
-const char* shading_method_names() { return "auto, split-sum, dominant, lights, lights+dominant, lights+sampled"; }
+const char* shading_method_names() { return "auto, split-sum, dominant, lights, lights+dominant"; }
 
 }  // namespace facet

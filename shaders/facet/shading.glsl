@@ -295,6 +295,9 @@ FacetEnvironmentLight facet_environment_light(FacetSurface s, vec3 v, float Ndot
         kd = min(kd, (1.0 - E - E_ms) * (1.0 - s.metallic));
     }
     vec3 lookup = reflect(-v, s.n);
+    // (Replacing the split sum's specular for rough lobes by 8 filtered importance samples of
+    // the true BRDF, one pattern at every pixel, measured worse under the shared
+    // environments: 6-10% per-pixel structure on rough metals, studio 38%, venice 9.8%.)
     if (dominant_direction) {
         // Rough lobes lean towards n (Lagarde and de Rousiers 2014, "Moving Frostbite to
         // PBR", listing 22, with alpha = roughness^2 as their roughness). Measured against
@@ -318,48 +321,6 @@ FacetEnvironmentLight facet_environment_light(FacetSurface s, vec3 v, float Ndot
     env.diffuse = kd * s.albedo * env.irradiance * s.occlusion;
     env.specular += env.prefiltered * E * s.occlusion;
     return env;
-}
-
-// The environment's specular part by N = 8 samples of the true BRDF per pixel instead of
-// the split sum's product: filtered importance sampling (Krivanek and Colbert 2008). The
-// half vectors follow GGX's distribution at the stratified quantiles (i + 0.5) / N of its
-// CDF and a golden-angle spiral in azimuth (the same pattern at every pixel: no noise);
-// each sample reads the prefiltered cube at the level whose lobe (solid angle about
-// 4 pi alpha^2) matches the sample's share 1 / (N pdf) of the lobe, and weighs it with the
-// model's F V 4 (v.h)(n.l) / (n.h) (f cos / pdf, D cancelling). Samples below the surface
-// weigh nothing, which the split sum's lobe around R cannot do: its error on rough lobes
-// is mostly light from below the horizon and the wrong lobe shape at grazing angles.
-// Meant for the map without its bright regions (light extraction), where the levels are
-// smooth at the samples' scale. Occlusion and intensity not applied.
-vec3 facet_environment_specular_sampled(FacetSurface s, vec3 v, float NdotV, samplerCube specular_map,
-                                        float specular_levels) {
-    const uint N = 8u;
-    vec3 t, b;
-    facet_tangent_frame(s.n, t, b);
-    float alpha = max(s.roughness * s.roughness, MIN_ALPHA), a2 = alpha * alpha;
-    vec3 sum = vec3(0.0);
-    for (uint i = 0u; i < N; ++i) {
-        float u = (float(i) + 0.5) / float(N);
-        float phi = float(i) * 2.39996323;
-        float cos_h = sqrt((1.0 - u) / (1.0 + (a2 - 1.0) * u));
-        float sin_h = sqrt(max(0.0, 1.0 - cos_h * cos_h));
-        vec3 h = t * (cos(phi) * sin_h) + b * (sin(phi) * sin_h) + s.n * cos_h;
-        float VdotH = dot(v, h);
-        if (VdotH <= 0.0) continue;
-        vec3 l = 2.0 * VdotH * h - v;
-        float NdotL = dot(s.n, l);
-        if (NdotL <= 0.0) continue;
-        float D = D_GGX(cos_h, s.roughness);
-        float pdf = D * cos_h / (4.0 * VdotH);
-        vec3 F, kd;
-        facet_fresnel(s, VdotH, F, kd);
-        vec3 weight = F * facet_specular_dg(s, NdotV, NdotL, cos_h, false) * NdotL / max(pdf, 1e-8);
-        // The level whose GGX lobe covers 1 / (N pdf) steradians: alpha' = sqrt(omega / 4 pi).
-        float alpha_level = sqrt(1.0 / (float(N) * max(pdf, 1e-8) * 4.0 * PI));
-        float lod = clamp(sqrt(alpha_level), 0.0, 1.0) * (specular_levels - 1.0);
-        sum += weight * textureLod(specular_map, l, lod).rgb;
-    }
-    return sum / float(N);
 }
 
 #endif

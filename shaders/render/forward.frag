@@ -6,8 +6,7 @@
 // HAS_METALLIC_ROUGHNESS_MAP, HAS_NORMAL_MAP, HAS_OCCLUSION_MAP, HAS_EMISSIVE_MAP,
 // ALPHA_MASK, ALPHA_BLEND, DOUBLE_SIDED, USE_IBL, BRDF_THESIS (the thesis' model instead
 // of glTF's), MULTISCATTER (energy compensation), DOMINANT_DIRECTION (bent specular
-// lookup), SAMPLED_SPECULAR (rough lobes by filtered importance sampling), VIEW (what is
-// written: render/views.glsl).
+// lookup), VIEW (what is written: render/views.glsl).
 #include "facet/shading.glsl"
 #include "render/forward_interface.glsl"
 #include "render/views.glsl"
@@ -141,19 +140,6 @@ void main() {
                                                         frame.ibl.x, multiscatter, dominant_direction);
     diffuse += env.diffuse;
     specular += env.specular;
-#ifdef SAMPLED_SPECULAR
-    // Lobes from roughness 0.25 on: the true BRDF by filtered importance sampling (the
-    // split sum's specular, multiscatter lobe aside, replaced), faded in over 0.2-0.25.
-    float sampled_weight = clamp((s.roughness - 0.2) / 0.05, 0.0, 1.0);
-    if (sampled_weight > 0.0) {
-        vec3 E, kd;
-        facet_lut_albedo(s, lut, E, kd);
-        vec3 split = env.prefiltered * E * s.occlusion;
-        vec3 sampled = facet_environment_specular_sampled(s, v, NdotV, specular_map, specular_levels) *
-                       frame.ibl.x * s.occlusion;
-        specular += sampled_weight * (sampled - split);
-    }
-#endif
     irradiance = env.irradiance;
     prefiltered = env.prefiltered;
 #endif

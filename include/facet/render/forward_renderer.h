@@ -48,7 +48,6 @@ struct FrameSettings {
     BrdfModel brdf = BrdfModel::gltf;  // design.md "BRDF models": lights, environment, views
     bool multiscatter = false;       // energy compensation (needs IBL: LUT and irradiance)
     bool dominant_direction = false; // specular lookup bent towards n for rough lobes
-    bool sampled_specular = false;   // rough lobes (roughness >= 0.25) by filtered importance sampling
     std::vector<Light> lights;       // every punctual light of the frame
     // Bright regions taken out of the environment before the bake (light extraction),
     // shaded as disk lights with the full BRDF; the skybox shows them again.

@@ -6,11 +6,6 @@
 //   map before the bake and shaded as disk lights with the full BRDF, the rest by the
 //   split sum (ibl/light_extraction.h);
 // - lights_dominant: both;
-// - lights_sampled: the lights, and lobes from roughness 0.25 on by filtered importance
-//   sampling of the rest (8 samples of the true BRDF per pixel reading the prefiltered
-//   cube; facet_environment_specular_sampled), smoother ones with the dominant direction.
-//   Measured worse than lights_dominant on the shared environments (8 samples of one
-//   pattern leave 6-10% per pixel on rough metals): kept for the chart, never chosen;
 // - automatic: chosen per environment (RenderSession, render/render_job.h): the lights
 //   (wide regions split into several) with the dominant direction where the environment
 //   has bright regions, the dominant direction alone where it has none.
@@ -20,12 +15,12 @@
 
 namespace facet {
 
-enum class ShadingMethod { automatic, split_sum, dominant, lights, lights_dominant, lights_sampled };
+enum class ShadingMethod { automatic, split_sum, dominant, lights, lights_dominant };
 
-// "auto", "split-sum", "dominant", "lights", "lights+dominant", "lights+sampled".
+// "auto", "split-sum", "dominant", "lights", "lights+dominant".
 const char* shading_method_name(ShadingMethod method);
 std::optional<ShadingMethod> parse_shading_method(std::string_view name);
-// "auto, split-sum, dominant, lights, lights+dominant, lights+sampled"
+// "auto, split-sum, dominant, lights, lights+dominant"
 const char* shading_method_names();
 
 }  // namespace facet
