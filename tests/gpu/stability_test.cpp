@@ -273,8 +273,11 @@ TEST_F(StabilityTest, ShadingAtRoughnessZeroAndGrazingAnglesStaysFinite) {
     const std::string envs[] = {"builtin:sky", sun.path, FACET_SHARED_DATA_DIR "/env/studio_small_03_1k.hdr", black.path,
                                 "builtin:white"};
     for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis})
-        for (ShadingMethod method : {ShadingMethod::automatic, ShadingMethod::lights_dominant})
-            for (const std::string& env : envs) {
+        for (const std::string& env : envs)
+            // The automatic choice is lights+dominant wherever there is something to
+            // extract; lights+dominant is also asked for by name where there is nothing.
+            for (ShadingMethod method : {ShadingMethod::automatic, ShadingMethod::lights_dominant}) {
+                if (method == ShadingMethod::lights_dominant && env != black.path) continue;
                 std::string first_choice;
                 for (float elevation : {0.5f, 30.0f}) {
                     RenderJob job;
