@@ -18,10 +18,10 @@ TARGETS = (0.03, 0.05)  # issue 13: 3% on the sunny skies, 5% on the studio and 
 FORWARD = ["split-sum", "dominant", "lights", "lights+dominant"]
 DESCRIPTIONS = {
     "split-sum": "the prefiltered cube along R times the LUT (Karis 2013)",
-    "dominant": "the split sum with the lookup bent towards n for rough lobes",
+    "dominant": "the split sum with three lookups fitted to the true lobe",
     "lights": "bright regions taken out of the map and shaded as disk lights with the full BRDF, "
               "the residual through the split sum",
-    "lights+dominant": "extracted lights and the dominant direction together",
+    "lights+dominant": "extracted lights and the fitted lookups together",
     "auto": "the method the session picks for the environment (RenderJob::shading = automatic)",
     "reference": "the reference mode, Monte Carlo over the whole environment at a fixed number of samples "
                  "per pixel (its time: the whole call)",

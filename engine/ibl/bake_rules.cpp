@@ -4,26 +4,20 @@
 
 #include <facet/core/hash.h>
 #include <facet/ibl/method_domain.h>
+#include <facet/render/specular_lobes.h>
 
 namespace facet {
 
 IblSettings ibl_settings_for_scene(IblSettings requested, const SceneNeeds& needs, bool multiscatter) {
     requested.want_irradiance = requested.want_irradiance && (needs.diffuse || multiscatter);
-    requested.specular.min_roughness = std::max(requested.specular.min_roughness, needs.min_roughness);
+    // The fitted lookups read kernels narrower than the surface's (render/specular_lobes.h).
+    requested.specular.min_roughness =
+        std::max(requested.specular.min_roughness, lowest_lookup_roughness(needs.min_roughness));
     return requested;
 }
 
-uint32_t light_split_level(std::span<const DiskLight> lights, uint32_t specular_levels) {
-    if (lights.empty()) return 0;
-    float widest = 0.0f;
-    for (const DiskLight& d : lights) widest = std::max(widest, d.angular_radius);
-    uint32_t level = 1;
-    while (level < specular_levels) {
-        const float roughness = float(level) / float(std::max(specular_levels - 1, 1u));
-        if (roughness * roughness >= widest) break;
-        ++level;
-    }
-    return level;
+uint32_t light_split_level(std::span<const DiskLight> lights, uint32_t /*specular_levels*/) {
+    return lights.empty() ? 0 : 1;
 }
 
 std::vector<std::string> bake_warnings(const EnvironmentSource& analysed, const IblSettings& resolved) {
@@ -34,7 +28,7 @@ std::vector<std::string> bake_warnings(const EnvironmentSource& analysed, const 
 // What a bake makes of the same input and settings: bumped with every change to the
 // passes or their rules (the LUT's channels, light extraction, the split level), so that
 // a bake cache never hands out an entry made by older code of the same version number.
-constexpr const char* kBakeRevision = "bake revision 3: BRDF models, lights of wide regions";
+constexpr const char* kBakeRevision = "bake revision 4: lights out of every level above the mirror";
 
 std::string bake_key(const EnvironmentSource& s, const BakeSettings& b) {
     const IblSettings& o = b.ibl;

@@ -11,6 +11,8 @@
 #include <facet/gpu/pipeline.h>
 #include <facet/graph/graph_run.h>
 #include <facet/render/gpu_scene.h>
+#include <facet/render/specular_lobes.h>
+#include <facet/gpu/transfer.h>
 #include <facet/shader/program_cache.h>
 #include "render/forward_data.h"
 #include "core/guarded.h"
@@ -42,6 +44,15 @@ ForwardRenderer::ForwardRenderer(Context& context, ProgramCache& programs, uint3
       nearest_(or_throw(Sampler::create(context, VK_FILTER_NEAREST, false, false, "nearest sampler"))),
       lut_sampler_(or_throw(Sampler::create(context, clamped_linear(), "brdf lut sampler"))) {
     if (frames_in_flight == 0) throw UsageError("ForwardRenderer: frames_in_flight must be at least 1");
+    ImageDesc table;
+    table.width = kSpecularLobeTableWidth;
+    table.height = kSpecularLobeTableHeight;
+    lobe_table_ = or_throw(Image::create(context, table, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                         "specular lobe table"));
+    const std::vector<float> texels = specular_lobe_table_texels();
+    or_throw(upload_image(context, lobe_table_, 0, 0, std::as_bytes(std::span<const float>(texels)),
+                          VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
+    lobe_table_view_ = or_throw(lobe_table_.view());
     slots_.resize(frames_in_flight);
     for (uint32_t f = 0; f < frames_in_flight; ++f) {
         const std::string n = " (frame slot " + std::to_string(f) + ")";
@@ -252,7 +263,8 @@ ForwardOutputs ForwardRenderer::add_draw_pass(RenderGraph& graph, const std::str
                 tex(TextureSlot::metallic_roughness),
                 tex(TextureSlot::normal),
                 tex(TextureSlot::occlusion),
-                tex(TextureSlot::emissive)};
+                tex(TextureSlot::emissive),
+                DescriptorWrite::sampled_image(lobe_table_view_, lut_sampler_.handle())};
             pipeline->push_descriptors(cmd, writes);
             pipeline->push_constants(cmd, DrawConstants{i, p.material});
             vkCmdDrawIndexed(cmd, p.index_count, 1, p.first_index, int32_t(p.vertex_offset), 0);

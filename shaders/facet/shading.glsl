@@ -201,7 +201,7 @@ struct FacetDiskLight {
 // lobe needs: one (the cap as a point source of its power) where the specular lobe is at
 // least four times wider than the cap, alpha >= 4 theta (D's curvature over the cap then
 // changes the sum by under 2%; the cosine lobe needs more only for caps over 0.1 radian),
-// 8 from alpha >= theta / 2 on, else 32. Lobes much narrower than the cap cannot be
+// 8 from alpha >= theta on, else 32. Lobes much narrower than the cap cannot be
 // resolved by 32 directions: there the cap acts as a mirror image, L times the lobe's
 // albedo (the LUT's F0 A + B) where R falls inside it, faded over the lobe's width.
 // Occlusion not applied.
@@ -221,7 +221,7 @@ void facet_disk_light(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, 
     // narrower than the cap's distance from R (eight lobe widths: D down to 1e-4 of its
     // peak) sees nothing of it. Either way the sum serves the diffuse part alone.
     bool mirror_only = alpha <= 0.25 * theta, outside = angle > theta + 8.0 * alpha;
-    uint N = alpha >= 4.0 * theta || mirror_only || outside ? 1u : (alpha >= 0.5 * theta ? 8u : 32u);
+    uint N = alpha >= 4.0 * theta || mirror_only || outside ? 1u : (alpha >= theta ? 8u : 32u);
     if (theta > 0.1) N = max(N, 8u);
     float omega = 2.0 * PI * (1.0 - cos_theta) / float(N);
     vec3 t = vec3(0.0), b = vec3(0.0);
@@ -251,11 +251,70 @@ void facet_disk_light(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, 
     specular = mix(mirror, sampled, clamp((alpha - theta / 4.0) / (theta / 4.0), 0.0, 1.0));
 }
 
+// The lookups of the prefiltered cube that stand for the specular lobe. One along R at the
+// surface's roughness (the split sum as Karis wrote it), or, `fitted`, three fitted to the
+// true lobe D V (n.l) (specular_lobes.glsl, scripts/fit_specular_lobes.py): at n.v < 1 the
+// lobe leans towards n and stretches in the plane of n and v, which one lookup of a kernel
+// symmetric about R cannot follow. The fit's L1 distance to the lobe is 2-10 times smaller
+// than one lookup's along R at n.v 0.1-0.9, roughness 0.2-1.
+struct FacetSpecularLookups {
+    vec3 direction[3];
+    float lod[3];
+    float weight[3];
+};
+
+// One lookup's entry of the fitted table (include/facet/render/specular_lobes.h: texel
+// (lookup * 9 + column, model * 9 + row)), interpolated linearly by the sampler at table
+// coordinates x (n.v column) and y (roughness row), each in [0, 8].
+vec3 facet_lobe_entry(sampler2D lobe_table, uint brdf, int lookup, float x, float y) {
+    vec2 uv = vec2((float(lookup) * 9.0 + 0.5 + x) / 27.0, (float(brdf) * 9.0 + 0.5 + y) / 18.0);
+    return textureLod(lobe_table, uv, 0.0).xyz;
+}
+
+FacetSpecularLookups facet_specular_lookups(FacetSurface s, vec3 v, float NdotV, float specular_levels,
+                                              sampler2D lobe_table, bool fitted) {
+    FacetSpecularLookups k;
+    vec3 R = reflect(-v, s.n);
+    float lod = facet_specular_lod(s.roughness, specular_levels);
+    for (int i = 0; i < 3; ++i) {
+        k.direction[i] = R;
+        k.lod[i] = lod;
+        k.weight[i] = i == 0 ? 1.0 : 0.0;
+    }
+    if (!fitted) return k;
+    // Table coordinates: roughness 0.2 .. 1 by 0.1 (below 0.2 the first row, its lookups
+    // drawn towards R and its roughness scaled with the surface's, so that a mirror reads R
+    // at level 0), n.v 0.1 .. 0.9 by 0.1 (clamped: the lookups meet at R = n as n.v -> 1).
+    float x = clamp((NdotV - 0.1) * 10.0, 0.0, 8.0);
+    float y = clamp((s.roughness - 0.2) * 10.0, 0.0, 8.0);
+    float below = clamp(s.roughness / 0.2, 0.0, 1.0);
+    float cos_theta = clamp(dot(s.n, R), -1.0, 1.0);
+    float theta = acos(cos_theta), sin_theta = sin(theta);
+    for (int i = 0; i < 3; ++i) {
+        vec3 e = facet_lobe_entry(lobe_table, s.brdf, i, x, y);
+        float fraction = mix(1.0, e.x, below);
+        // The axis at `fraction` of the angle from n to R, on their great circle.
+        vec3 d = sin_theta > 1e-4 ? (s.n * sin((1.0 - fraction) * theta) + R * sin(fraction * theta)) / sin_theta : R;
+        k.direction[i] = normalize(d);
+        // (A few lookups of negligible weight were fitted narrower: none reads below 0.35 r.)
+        k.lod[i] = facet_specular_lod(max(e.y * below, 0.35 * s.roughness), specular_levels);
+        k.weight[i] = e.z;
+    }
+    return k;
+}
+
 // The specular levels below `first_level_without_lights` still hold the extracted lights:
 // a disk's own specular counts only for the share of the lookup read from the levels
 // without them (the bake's light extraction split level).
 float facet_disk_specular_weight(float roughness, float specular_levels, float first_level_without_lights) {
     return clamp(facet_specular_lod(roughness, specular_levels) - (first_level_without_lights - 1.0), 0.0, 1.0);
+}
+
+// The same share for the lookups that shade the surface.
+float facet_disk_specular_weight(FacetSpecularLookups k, float first_level_without_lights) {
+    float w = 0.0;
+    for (int i = 0; i < 3; ++i) w += k.weight[i] * clamp(k.lod[i] - (first_level_without_lights - 1.0), 0.0, 1.0);
+    return w;
 }
 
 // The environment's contribution, and the two lookups it is made of (for inspection).
@@ -269,10 +328,12 @@ struct FacetEnvironmentLight {
 // Split-sum image-based lighting, occlusion applied. irradiance_map holds E / pi,
 // specular_map the GGX-prefiltered radiance with `specular_levels` levels, lut
 // facet_brdf_lut's value. multiscatter adds Kulla and Conty's multiple-scattering lobe (the
-// LUT's third channel); dominant_direction bends the lookup towards n for rough lobes.
+// LUT's third channel); `fitted` reads the three lookups fitted to the true lobe
+// (facet_specular_lookups, lobe_table: include/facet/render/specular_lobes.h) instead of one
+// along R (then lobe_table is not read).
 FacetEnvironmentLight facet_environment_light(FacetSurface s, vec3 v, float NdotV, vec4 lut, samplerCube irradiance_map,
                                               samplerCube specular_map, float specular_levels, float intensity,
-                                              bool multiscatter, bool dominant_direction) {
+                                              bool multiscatter, sampler2D lobe_table, bool fitted) {
     FacetEnvironmentLight env;
     env.specular = vec3(0.0);
     // The split sum's directional albedo E = F0 A + B (Karis 2013) and the diffuse
@@ -294,30 +355,18 @@ FacetEnvironmentLight facet_environment_light(FacetSurface s, vec3 v, float Ndot
         env.specular += E_ms * env.irradiance * s.occlusion;
         kd = min(kd, (1.0 - E - E_ms) * (1.0 - s.metallic));
     }
-    vec3 lookup = reflect(-v, s.n);
-    // (Replacing the split sum's specular for rough lobes by 8 filtered importance samples of
-    // the true BRDF, one pattern at every pixel, measured worse under the shared
-    // environments: 6-10% per-pixel structure on rough metals, studio 38%, venice 9.8%.)
-    if (dominant_direction) {
-        // Rough lobes lean towards n (Lagarde and de Rousiers 2014, "Moving Frostbite to
-        // PBR", listing 22, with alpha = roughness^2 as their roughness). Measured against
-        // the truth (facet-bench accuracy, glTF model, with light extraction): Filament's
-        // gentler mix(R, n, alpha^2) is better at roughness 1/3 under royal_esplanade
-        // (4.7% against 5.2%) and worse at 2/3 under venice_sunset (7.2% against 5.8%);
-        // pointing the lookup at the true lobe's centroid (a table over roughness and n.v)
-        // was better under studio_small_03 (17% against 22%) and worse under the other three.
-        // The bend fades in from roughness 0.35 to 0.5: at roughness 1/3 it made the worst
-        // groups worse than the plain split sum (dielectrics under venice_sunset and
-        // empty_warehouse_01, 1.6% and 4.1% against 1.4% and 3.5%); without it there they
-        // are 1.3% and 3.3%, royal_esplanade's metals 4.9% (5.6%), studio_small_03's 23%
-        // (17%, still a seventh of the split sum's).
-        float alpha = s.roughness * s.roughness;
-        float smoothness = clamp(1.0 - alpha, 0.0, 1.0);
-        float bend = 1.0 - smoothness * (sqrt(smoothness) + alpha);
-        lookup = normalize(mix(lookup, s.n, bend * smoothstep(0.35, 0.5, s.roughness)));
-    }
-    env.prefiltered =
-        textureLod(specular_map, lookup, facet_specular_lod(s.roughness, specular_levels)).rgb * intensity;
+    // fitted: the lookups fitted to the true lobe (facet_specular_lookups).
+    // Measured against the truth before them (facet-bench accuracy, glTF model, light
+    // extraction on): Frostbite's dominant direction (Lagarde and de Rousiers 2014, listing 22)
+    // faded in from roughness 0.35 to 0.5 left 5-7% in the worst groups under venice_sunset,
+    // royal_esplanade and empty_warehouse_01; Filament's mix(R, n, alpha^2), a lookup pointed
+    // at the lobe's centroid, level blending linear in alpha^2, 11 levels instead of 6 and 8
+    // filtered importance samples of the true BRDF per pixel were each worse somewhere.
+    FacetSpecularLookups k = facet_specular_lookups(s, v, NdotV, specular_levels, lobe_table, fitted);
+    env.prefiltered = vec3(0.0);
+    for (int i = 0; i < 3; ++i)
+        if (k.weight[i] > 0.0) env.prefiltered += k.weight[i] * textureLod(specular_map, k.direction[i], k.lod[i]).rgb;
+    env.prefiltered *= intensity;
     env.diffuse = kd * s.albedo * env.irradiance * s.occlusion;
     env.specular += env.prefiltered * E * s.occlusion;
     return env;

@@ -119,7 +119,14 @@ void main() {
     }
     vec3 irradiance = vec3(0.0), prefiltered = vec3(0.0);
 #ifdef USE_IBL
-    float disk_specular_weight = facet_disk_specular_weight(s.roughness, specular_levels, frame.ibl.z);
+#ifdef DOMINANT_DIRECTION
+    const bool dominant_direction = true;
+#else
+    const bool dominant_direction = false;
+#endif
+    // The disks' specular counts for the share of the lookups read from levels without them.
+    float disk_specular_weight = facet_disk_specular_weight(
+        facet_specular_lookups(s, v, NdotV, specular_levels, specular_lobes, dominant_direction), frame.ibl.z);
     for (uint i = 0u; i < frame.counts.y; ++i) {
         vec3 disk_diffuse, disk_specular;
         facet_disk_light(s, v, NdotV, unpack_disk_light(lights[frame.counts.x + i]), lut, disk_diffuse, disk_specular);
@@ -131,13 +138,8 @@ void main() {
 #else
     const bool multiscatter = false;
 #endif
-#ifdef DOMINANT_DIRECTION
-    const bool dominant_direction = true;
-#else
-    const bool dominant_direction = false;
-#endif
     FacetEnvironmentLight env = facet_environment_light(s, v, NdotV, lut, irradiance_map, specular_map, specular_levels,
-                                                        frame.ibl.x, multiscatter, dominant_direction);
+                                                        frame.ibl.x, multiscatter, specular_lobes, dominant_direction);
     diffuse += env.diffuse;
     specular += env.specular;
     irradiance = env.irradiance;

@@ -39,6 +39,7 @@ layout(binding = 8) uniform sampler2D metallic_roughness_map;
 layout(binding = 9) uniform sampler2D normal_map;
 layout(binding = 10) uniform sampler2D occlusion_map;
 layout(binding = 11) uniform sampler2D emissive_map;
+layout(binding = 12) uniform sampler2D specular_lobes;  // the fitted lookups (render/specular_lobes.h)
 
 layout(push_constant) uniform Draw {
     uint instance;

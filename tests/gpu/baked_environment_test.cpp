@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include <facet/render/specular_lobes.h>
 #include <facet/gpu/transfer.h>
 #include <facet/graph/compiled_graph.h>
 #include <facet/graph/graph_run.h>
@@ -279,21 +280,27 @@ TEST(BakeRules, WhatASceneNeedsAndTheSplitLevel) {
     metals.min_roughness = 0.4f;
     const IblSettings s = ibl_settings_for_scene(requested, metals, false);
     EXPECT_FALSE(s.want_irradiance) << "pure metals need no irradiance";
-    EXPECT_EQ(s.specular.min_roughness, 0.4f);
+    // The fitted lookups of roughness 0.4 and up read narrower kernels, down to the table's
+    // smallest from the 0.4 row on (render/specular_lobes.h); never above the surfaces'.
+    EXPECT_EQ(s.specular.min_roughness, lowest_lookup_roughness(0.4f));
+    EXPECT_LT(s.specular.min_roughness, 0.4f);
+    EXPECT_GT(s.specular.min_roughness, 0.1f);
+    EXPECT_LT(lowest_lookup_roughness(0.1f), 0.1f);
+    EXPECT_EQ(lowest_lookup_roughness(0.0f), 0.0f);
     EXPECT_TRUE(ibl_settings_for_scene(requested, metals, true).want_irradiance) << "multiscatter reads it";
     EXPECT_TRUE(ibl_settings_for_scene(requested, SceneNeeds{}, false).want_irradiance);
     // Lookup: roughness r reads level r x (levels - 1).
     EXPECT_FLOAT_EQ(specular_lookup_lod(0.5f, 6), 2.5f);
     EXPECT_FLOAT_EQ(specular_lookup_lod(1.0f, 6), 5.0f);
     EXPECT_FLOAT_EQ(specular_lookup_lod(1.0f, 1), 0.0f);
-    // Split: the first level whose alpha = roughness^2 reaches the widest light's radius.
+    // Split: with lights, only level 0 (the mirror) keeps them, however wide they are.
     EXPECT_EQ(light_split_level({}, 6), 0u);
     DiskLight sun;
-    sun.angular_radius = 0.05f;  // alpha at level m of 6: (m/5)^2 = 0.04, 0.16: level 2
+    sun.angular_radius = 0.05f;
     const std::vector<DiskLight> one{sun};
-    EXPECT_EQ(light_split_level(one, 6), 2u);
-    sun.angular_radius = 2.0f;  // wider than every lobe: the last level
-    EXPECT_EQ(light_split_level(std::vector<DiskLight>{sun}, 6), 6u);
+    EXPECT_EQ(light_split_level(one, 6), 1u);
+    sun.angular_radius = 2.0f;
+    EXPECT_EQ(light_split_level(std::vector<DiskLight>{sun}, 6), 1u);
     // The key: any setting changes it, the same settings repeat it.
     EnvironmentSource env;
     env.content_hash = "abc";

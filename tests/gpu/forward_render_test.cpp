@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include <facet/render/specular_lobes.h>
 #include <facet/render/render_job.h>
 #include <facet/scene/builtin_scenes.h>
 #include "support/gpu_test.h"
@@ -484,18 +485,22 @@ TEST_F(ForwardRenderTest, SpecularLevelsBelowTheSceneRoughnessAreNotBaked) {
     job.frame.width = 96;
     job.frame.height = 32;
     std::vector<std::string> baked;
-    auto session = RenderSession::create(ctx(), job, spheres(0.5f));
+    auto session = RenderSession::create(ctx(), job, spheres(0.8f));
     ASSERT_TRUE(session) << session.error().message;
     for (const PassTiming& t : (*session)->bake_timings())
         if (t.name.rfind("specular level", 0) == 0 && t.name.find("texels") == std::string::npos)
             baked.push_back(t.name.substr(0, 16));
-    // Roughness >= 0.5 reads levels 2 (0.4) and up.
-    EXPECT_EQ(baked, (std::vector<std::string>{"specular level 2", "specular level 3", "specular level 4",
-                                               "specular level 5"}));
+    // Roughness >= 0.8 reads levels 4 (0.8) and up along R; the fitted lookups read narrower
+    // kernels too (render/specular_lobes.h), down to lowest_lookup_roughness(0.8).
+    const uint32_t first = uint32_t(std::floor(lowest_lookup_roughness(0.8f) * 5.0f));
+    EXPECT_GE(first, 1u);
+    std::vector<std::string> expected;
+    for (uint32_t level = first; level < 6; ++level) expected.push_back("specular level " + std::to_string(level));
+    EXPECT_EQ(baked, expected);
     auto culled = (*session)->render_frame();
     ASSERT_TRUE(culled);
     // The same scene with one sphere at roughness 0 bakes everything; the others match.
-    Scene full = spheres(0.5f);
+    Scene full = spheres(0.8f);
     full.materials.push_back(full.materials.back());
     full.materials.back().roughness = 0.0f;
     const uint32_t p = add_sphere_primitive(full, uint32_t(full.materials.size() - 1));

@@ -20,13 +20,15 @@ namespace facet {
 // level below the one a lookup at the scene's smallest roughness reads.
 IblSettings ibl_settings_for_scene(IblSettings requested, const SceneNeeds& needs, bool multiscatter);
 
-// With extracted lights, specular levels whose GGX lobe (alpha = roughness^2) is narrower
-// than the widest light's angular radius come from the whole environment (their split
-// sum sees the lights as they are: the shapes of windows and softboxes, which their
-// disks only approximate); the disks take over from the first level that is wider.
-// (Half the radius, tried, made metals of roughness 1/6 three times worse under
-// empty_warehouse_01, whose windows become several disks.) 0 without lights. The frame's FrameSettings::environment_light_level must be
-// this value for the bake it samples.
+// With extracted lights, the first specular level without them: level 0 (the mirror) keeps
+// them, so that mirrors show windows and softboxes in their true shapes, which the disks only
+// approximate; every rougher level comes from the map without them and the disks take over.
+// (Keeping them in the levels whose lobe, alpha = roughness^2, is narrower than the widest
+// light's radius, as before: with the fitted lookups (shading.glsl) that made metals of
+// roughness 1/6 to 1/3 worse under every shared environment with wide lights, e.g. the worst
+// group under empty_warehouse_01 7.4% against 3.7% and under studio_small_03 22% against 9%.)
+// 0 without lights. The frame's FrameSettings::environment_light_level must be this value
+// for the bake it samples.
 uint32_t light_split_level(std::span<const DiskLight> lights, uint32_t specular_levels);
 
 // The level of the prefiltered cube holding a roughness (level m = roughness m / (levels - 1)).

@@ -47,7 +47,7 @@ struct FrameSettings {
     bool skybox = true;
     BrdfModel brdf = BrdfModel::gltf;  // design.md "BRDF models": lights, environment, views
     bool multiscatter = false;       // energy compensation (needs IBL: LUT and irradiance)
-    bool dominant_direction = false; // specular lookup bent towards n for rough lobes
+    bool dominant_direction = false; // three lookups fitted to the specular lobe (render/specular_lobes.h) instead of one along R
     std::vector<Light> lights;       // every punctual light of the frame
     // Bright regions taken out of the environment before the bake (light extraction),
     // shaded as disk lights with the full BRDF; the skybox shows them again.
@@ -160,6 +160,9 @@ private:
     ProgramCache& programs_;
     std::vector<Slot> slots_;
     Sampler nearest_, lut_sampler_;
+    // The fitted lookups' table (render/specular_lobes.h), uploaded once.
+    Image lobe_table_;
+    VkImageView lobe_table_view_ = VK_NULL_HANDLE;
     std::set<std::string> variants_;
 };
 

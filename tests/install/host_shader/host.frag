@@ -6,6 +6,7 @@
 layout(set = 2, binding = 7) uniform samplerCube my_irradiance;
 layout(set = 2, binding = 8) uniform samplerCube my_specular;
 layout(set = 2, binding = 9) uniform sampler2D my_lut;
+layout(set = 2, binding = 10) uniform sampler2D my_specular_lobes;  // facet/render/specular_lobes.h
 layout(location = 0) in vec3 n_in;
 layout(location = 1) in vec3 v_in;
 layout(location = 0) out vec4 color;
@@ -14,7 +15,8 @@ void main() {
     vec3 v = normalize(v_in);
     float NdotV = clamp(dot(s.n, v), 0.0, 1.0);
     vec4 lut = facet_brdf_lut(my_lut, NdotV, s.roughness);
-    FacetEnvironmentLight env = facet_environment_light(s, v, NdotV, lut, my_irradiance, my_specular, 8.0, 1.0, false, false);
+    FacetEnvironmentLight env = facet_environment_light(s, v, NdotV, lut, my_irradiance, my_specular, 8.0, 1.0, false,
+                                                        my_specular_lobes, true);
     FacetPunctualLight sun;
     sun.type = FACET_LIGHT_DIRECTIONAL;
     sun.direction = vec3(0.0, -1.0, 0.0);

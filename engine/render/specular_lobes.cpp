@@ -1,0 +1,43 @@
+#include <facet/render/specular_lobes.h>
+
+#include <algorithm>
+#include <cstddef>
+
+#include "render/specular_lobes_table.h"
+
+namespace facet {
+
+static_assert(kSpecularLobeTableWidth == 3 * kSpecularLobeColumns);
+static_assert(kSpecularLobeTableHeight == kSpecularLobeModels * kSpecularLobeRows);
+
+std::vector<float> specular_lobe_table_texels() {
+    std::vector<float> texels(std::size_t(kSpecularLobeTableWidth) * kSpecularLobeTableHeight * 4, 0.0f);
+    for (int model = 0; model < kSpecularLobeModels; ++model)
+        for (int row = 0; row < kSpecularLobeRows; ++row)
+            for (int column = 0; column < kSpecularLobeColumns; ++column)
+                for (int lookup = 0; lookup < 3; ++lookup) {
+                    const float* e =
+                        kSpecularLobeEntries[((model * kSpecularLobeRows + row) * kSpecularLobeColumns + column) * 3 + lookup];
+                    const std::size_t x = std::size_t(lookup * kSpecularLobeColumns + column);
+                    const std::size_t y = std::size_t(model * kSpecularLobeRows + row);
+                    float* t = &texels[(y * kSpecularLobeTableWidth + x) * 4];
+                    t[0] = e[0], t[1] = e[1], t[2] = e[2];
+                }
+    return texels;
+}
+
+float lowest_lookup_roughness(float roughness) {
+    // Rows from the one at or below `roughness` up; below 0.2 the shader scales the first
+    // row's lookups by roughness / 0.2; no lookup reads below 0.35 x the surface's roughness.
+    const int first_row = roughness < 0.2f ? 0 : std::min(int((roughness - 0.2f) * 10.0f + 1e-4f), kSpecularLobeRows - 1);
+    const float scale = roughness < 0.2f ? std::max(roughness, 0.0f) / 0.2f : 1.0f;
+    float lowest = roughness;
+    for (int model = 0; model < kSpecularLobeModels; ++model)
+        for (int row = first_row; row < kSpecularLobeRows; ++row)
+            for (int i = 0; i < kSpecularLobeColumns * 3; ++i)
+                lowest = std::min(lowest, std::max(scale * kSpecularLobeEntries[(model * kSpecularLobeRows + row) * kSpecularLobeColumns * 3 + i][1],
+                                                   0.35f * roughness));
+    return lowest;
+}
+
+}  // namespace facet

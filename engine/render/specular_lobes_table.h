@@ -1,0 +1,13 @@
+#pragma once
+// The fitted lookups' table as scripts/fit_specular_lobes.py writes it
+// (specular_lobes_table.cpp): model-major, then roughness row, n.v column and lookup.
+namespace facet {
+
+inline constexpr int kSpecularLobeModels = 2;   // BrdfModel::gltf, BrdfModel::thesis
+inline constexpr int kSpecularLobeRows = 9;     // roughness 0.2 .. 1.0 by 0.1
+inline constexpr int kSpecularLobeColumns = 9;  // n.v 0.1 .. 0.9 by 0.1
+
+// (s, roughness, weight) of each lookup: its axis at the fraction s of the angle from n to R.
+extern const float kSpecularLobeEntries[kSpecularLobeModels * kSpecularLobeRows * kSpecularLobeColumns * 3][3];
+
+}  // namespace facet

@@ -1,0 +1,25 @@
+#pragma once
+// The table of the split sum's fitted lookups: for each BRDF model, roughness and n.v, three
+// lookups of the prefiltered cube whose kernels, summed, follow the true specular lobe
+// D V (n.l) (fitted by least squares: scripts/fit_specular_lobes.py). The forward pass binds it
+// for the dominant and automatic shading methods; a host engine whose own shaders call
+// facet_environment_light with fitted lookups (shaders/facet/shading.glsl) uploads these
+// texels as a VK_FORMAT_R32G32B32A32_SFLOAT image and samples it linearly, clamped to edge.
+#include <cstdint>
+#include <vector>
+
+namespace facet {
+
+inline constexpr uint32_t kSpecularLobeTableWidth = 27;   // 3 lookups x 9 n.v columns (0.1 .. 0.9)
+inline constexpr uint32_t kSpecularLobeTableHeight = 18;  // 2 BRDF models x 9 roughness rows (0.2 .. 1)
+
+// RGBA texels, row 0 first: texel (lookup * 9 + column, model * 9 + row) holds
+// (s, roughness, weight, 0), the lookup's axis at the fraction s of the angle from n to R.
+std::vector<float> specular_lobe_table_texels();
+
+// The smallest roughness that the fitted lookups of any surface at `roughness` or rougher
+// read (their kernels are narrower than the surface's lobe): the bake keeps the specular
+// levels from there on (ibl/bake_rules.h, ibl_settings_for_scene).
+float lowest_lookup_roughness(float roughness);
+
+}  // namespace facet
