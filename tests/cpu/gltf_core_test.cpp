@@ -266,5 +266,25 @@ TEST(GltfCore, DefaultCameraSeesFlatModels) {
     EXPECT_GT(cube.position.z, 1.0f);
 }
 
+// The fuzz seeds of the new paths (tests/fuzz/corpus/gltf, make_corpus_gltf.cpp) reach
+// the check they were written for, and the valid ones load.
+TEST(GltfCore, FuzzSeedsReachTheirChecks) {
+    const std::string corpus = std::string(FACET_SOURCE_DIR) + "/tests/fuzz/corpus/gltf/";
+    const std::pair<const char*, const char*> refused[] = {
+        {"bad_mode_unknown.gltf", "unknown primitive mode 9"},
+        {"bad_morph_count.gltf", "morph target 0: POSITION has 3 elements, POSITION has 4"},
+        {"bad_morph_weights.gltf", "2 morph weights for 1 morph targets"},
+        {"bad_scene_index.gltf", "scene 7 out of range (1 scenes)"},
+        {"bad_skin_joint.gltf", "skin 0: joint 7 is not a node (2 nodes)"},
+        {"bad_skin_vertex_joint.gltf", "vertex 1 uses joint 1 of a skin with 1"},
+        {"bad_sparse_index.gltf", "sparse index 3 out of range (the accessor has 2 elements)"},
+        {"bad_texcoord_2.gltf", "baseColorTexture uses TEXCOORD_2"}};
+    for (const auto& [name, phrase] : refused) expect_error(corpus + name, phrase);
+    for (const char* name : {"colours_uv1.gltf", "lines_points.gltf", "skin_morph.gltf", "sparse_quantised.gltf"}) {
+        Result<Scene> scene = load_gltf(corpus + name);
+        EXPECT_TRUE(scene.ok()) << name << ": " << (scene.ok() ? "" : scene.error().message);
+    }
+}
+
 }  // namespace
 }  // namespace facet
