@@ -61,8 +61,10 @@ glm::vec3 unit_or(glm::vec3 v, glm::vec3 fallback) {
     return length > 1e-20f && std::isfinite(length) ? v / length : fallback;
 }
 
-void skin(std::vector<Vertex>& vertices, const PrimitiveDeform& deform, std::span<const glm::mat4> joint_matrices,
-          const std::string& where) {
+// Returns how many vertices' blended matrices mirror.
+size_t skin(std::vector<Vertex>& vertices, const PrimitiveDeform& deform, std::span<const glm::mat4> joint_matrices,
+            const std::string& where) {
+    size_t mirrored = 0;
     for (size_t i = 0; i < vertices.size(); ++i) {
         glm::mat4 m(0.0f);
         float total = 0.0f;
@@ -85,9 +87,12 @@ void skin(std::vector<Vertex>& vertices, const PrimitiveDeform& deform, std::spa
         const glm::mat3 linear(m);
         v.normal = unit_or(glm::transpose(glm::inverse(linear)) * v.normal, v.normal);
         // A mirroring joint flips the bitangent, as it does for a node (forward.vert).
-        const float handedness = glm::determinant(linear) < 0.0f ? -v.tangent.w : v.tangent.w;
-        v.tangent = glm::vec4(unit_or(linear * glm::vec3(v.tangent), glm::vec3(v.tangent)), handedness);
+        const bool mirrors = glm::determinant(linear) < 0.0f;
+        mirrored += mirrors;
+        v.tangent = glm::vec4(unit_or(linear * glm::vec3(v.tangent), glm::vec3(v.tangent)),
+                              mirrors ? -v.tangent.w : v.tangent.w);
     }
+    return mirrored;
 }
 
 }  // namespace
@@ -95,7 +100,8 @@ void skin(std::vector<Vertex>& vertices, const PrimitiveDeform& deform, std::spa
 std::vector<Vertex> deform_vertices(std::span<const Vertex> base, std::span<const uint32_t> indices,
                                     Topology topology, const PrimitiveDeform& deform, std::span<const float> weights,
                                     std::span<const glm::mat4> joint_matrices, uint32_t normal_uv_set,
-                                    const std::string& where) {
+                                    const std::string& where, bool& mirrored) {
+    mirrored = false;
     std::vector<Vertex> vertices(base.begin(), base.end());
     if (!weights.empty()) {
         morph(vertices, deform, weights);
@@ -109,7 +115,8 @@ std::vector<Vertex> deform_vertices(std::span<const Vertex> base, std::span<cons
         if (topology == Topology::triangles && deform.tangents_generated)
             generate_tangents_for(vertices, indices, normal_uv_set);
     }
-    if (!joint_matrices.empty() && !deform.influences.empty()) skin(vertices, deform, joint_matrices, where);
+    if (!joint_matrices.empty() && !deform.influences.empty())
+        mirrored = 2 * skin(vertices, deform, joint_matrices, where) > vertices.size();
     for (const Vertex& v : vertices)
         if (!std::isfinite(v.position.x) || !std::isfinite(v.position.y) || !std::isfinite(v.position.z))
             fail(where + ": a skinned position is not finite");

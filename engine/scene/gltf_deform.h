@@ -23,10 +23,12 @@ std::vector<SkinData> read_skins(const tinygltf::Model& model);
 // `base` morphed by `weights` (one per target; empty: no morphing), then, when
 // `joint_matrices` is not empty, skinned by them (world space: joint world x inverse
 // bind). Normals and tangents follow; generated ones are generated again from the
-// morphed positions. `indices` are the primitive's (relative to `base`).
+// morphed positions. `indices` are the primitive's (relative to `base`). `mirrored` is
+// set when most vertices' skin matrices mirror (negative determinant): the triangles'
+// winding then turns, as for a mirrored node.
 std::vector<Vertex> deform_vertices(std::span<const Vertex> base, std::span<const uint32_t> indices,
                                     Topology topology, const PrimitiveDeform& deform, std::span<const float> weights,
                                     std::span<const glm::mat4> joint_matrices, uint32_t normal_uv_set,
-                                    const std::string& where);
+                                    const std::string& where, bool& mirrored);
 
 }  // namespace facet::gltf_detail

@@ -241,10 +241,21 @@ void place_mesh(const tinygltf::Model& model, int index, const std::vector<glm::
         const std::span<const Vertex> base(scene.vertices.data() + copy.vertex_offset, copy.vertex_count);
         const std::span<const uint32_t> indices(scene.indices.data() + copy.first_index, copy.index_count);
         const Material* material = copy.material < scene.materials.size() ? &scene.materials[copy.material] : nullptr;
-        std::vector<Vertex> vertices =
-            deform_vertices(base, indices, copy.topology, deform, morphs ? std::span<const float>(weights) : std::span<const float>(),
-                            skinned ? std::span<const glm::mat4>(joints) : std::span<const glm::mat4>(),
-                            material ? material->normal_texture.uv_set : 0u, at);
+        bool mirrored = false;
+        std::vector<Vertex> vertices = deform_vertices(
+            base, indices, copy.topology, deform, morphs ? std::span<const float>(weights) : std::span<const float>(),
+            skinned ? std::span<const glm::mat4>(joints) : std::span<const glm::mat4>(),
+            material ? material->normal_texture.uv_set : 0u, at, mirrored);
+        if (mirrored && copy.topology == Topology::triangles) {
+            // A mirroring skin turns the winding: its copy gets its own, reversed triangles.
+            if (scene.indices.size() + copy.index_count > limits.max_indices)
+                fail(at + ": its mirrored skinned copy takes the scene past the limit of " +
+                     std::to_string(limits.max_indices) + " indices");
+            const std::vector<uint32_t> reversed_from(indices.begin(), indices.end());
+            copy.first_index = uint32_t(scene.indices.size());
+            for (size_t t = 0; t + 2 < reversed_from.size(); t += 3)
+                scene.indices.insert(scene.indices.end(), {reversed_from[t], reversed_from[t + 2], reversed_from[t + 1]});
+        }
         copy.vertex_offset = uint32_t(scene.vertices.size());
         set_bounds(copy, vertices);
         scene.vertices.insert(scene.vertices.end(), vertices.begin(), vertices.end());

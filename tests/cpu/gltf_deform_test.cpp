@@ -72,6 +72,27 @@ TEST(GltfDeform, TwoBoneSkinPosedByItsJoints) {
     expect_near(p.bounds_max, {0.5f, 1.5f, 0.0f});
 }
 
+// The same skin under a root scaled by -1 in x: every skin matrix mirrors, so the
+// skinned copy's triangle winds the other way round (as a mirrored node's would).
+TEST(GltfDeform, MirroringSkinTurnsTheWinding) {
+    GltfTempDir dir("gltf_deform");
+    TwoBones bones;
+    bones.members.replace(bones.members.find(R"({"name": "A", "children": [2]})"), 30,
+                          R"({"name": "A", "children": [2], "scale": [-1, 1, 1]})");
+    Result<Scene> loaded = load_gltf(bones.b.write(dir, "mirrored_skin", bones.members));
+    ASSERT_TRUE(loaded.ok()) << loaded.error().message;
+    const Scene& scene = *loaded;
+    ASSERT_EQ(scene.instances.size(), 1u);
+    const Primitive& p = scene.primitives[scene.instances[0].primitive];
+    ASSERT_EQ(p.index_count, 3u);
+    EXPECT_EQ(scene.indices[p.first_index], 0u);
+    EXPECT_EQ(scene.indices[p.first_index + 1], 2u);
+    EXPECT_EQ(scene.indices[p.first_index + 2], 1u);
+    const Vertex* v = &scene.vertices[p.vertex_offset];
+    expect_near(v[0].position, {-0.5f, 0.0f, 0.0f});
+    expect_near(v[2].position, {1.0f, 1.5f, 0.0f});
+}
+
 TEST(GltfDeform, SkinJointThatIsNotANode) {
     GltfTempDir dir("gltf_deform");
     TwoBones bones("[1, 7]");
