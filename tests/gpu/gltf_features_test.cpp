@@ -247,6 +247,47 @@ TEST_F(GltfFeaturesTest, MirroredCubeShowsItsFrontFaces) {
     EXPECT_NEAR(right.b, 0.0f, 2e-3f);
 }
 
+// A normal map tilting the normal towards the bitangent, on a quad mirrored in x (and,
+// for comparison, on the same quad unmirrored): the bitangent is +Y either way (a mirror
+// in x leaves Y alone), so both must shade as Lambert with the tilted normal under a
+// light from above. Without the handedness flip the mirrored one would tilt towards -Y.
+TEST_F(GltfFeaturesTest, MirroredNormalMapKeepsItsBitangent) {
+    const std::string png = dir.file("tilt.png");
+    const unsigned char texel[] = {128, 191, 238, 255};
+    auto out = OIIO::ImageOutput::create(png);
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(png, OIIO::ImageSpec(1, 1, 4, OIIO::TypeDesc::UINT8)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, texel));
+    out->close();
+    const glm::vec3 tangent_space = glm::normalize(glm::vec3(texel[0], texel[1], texel[2]) / 255.0f * 2.0f - 1.0f);
+    const glm::vec3 n = glm::normalize(glm::vec3(0.0f, tangent_space.y, tangent_space.z));  // x: along the tangent
+    ASSERT_NEAR(tangent_space.x, 0.0f, 0.01f);
+    GltfBuilder b;
+    b.add(kQuad, kFloat, "VEC3", 4);
+    b.add(kQuadIndices, kUshort, "SCALAR", 6);
+    b.add(std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, kFloat, "VEC3", 4);                  // NORMAL
+    b.add(std::vector<float>{1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1}, kFloat, "VEC4", 4);     // TANGENT
+    b.add(std::vector<float>{0, 1, 1, 1, 1, 0, 0, 0}, kFloat, "VEC2", 4);
+    Light sun;
+    sun.direction = glm::normalize(glm::vec3(0.0f, -1.0f, -1.0f));  // from above and in front
+    sun.intensity = float(M_PI);
+    const float expected = std::max(0.0f, -glm::dot(n, sun.direction));
+    for (const char* node : {R"({"mesh": 0})", R"({"mesh": 0, "scale": [-1, 1, 1]})"}) {
+        const std::string members =
+            mesh_file(R"("POSITION": 0, "NORMAL": 2, "TANGENT": 3, "TEXCOORD_0": 4)", 1,
+                      R"({"normalTexture": {"index": 0}})", 4, node) +
+            R"(, "textures": [{"source": 0, "sampler": 0}], "images": [{"uri": "tilt.png"}],
+  "samplers": [{"magFilter": 9728, "minFilter": 9728}])";
+        RenderJob j = job("none");
+        j.extra_lights = {sun};
+        const RenderedImages images = render(b.write(dir, "tilt", members), j);
+        ASSERT_EQ(images.hdr.size(), kSize * kSize * 4);
+        const Pixel p = at(images.hdr, 32, 32);
+        EXPECT_NEAR(p.r, expected, 2e-3f) << node;
+        EXPECT_NEAR(p.g, expected, 2e-3f) << node;
+    }
+}
+
 // Lines (a loop around the quad's outline) and points (a 5 x 5 grid), unlit: base
 // colour x vertex colour + emissive, exactly.
 TEST_F(GltfFeaturesTest, LinesAndPointsDrawnUnlit) {
