@@ -329,6 +329,59 @@ TEST_F(GltfFeaturesTest, LinesAndPointsDrawnUnlit) {
     EXPECT_EQ(point_pixels, 25);
 }
 
+// The quad's right edge (vertices 1 and 2, at x = 1) moved to x = 0 three ways: by a
+// sparse accessor, by a morph target with the mesh's default weight, by a skin joint
+// translated by -1 in x. Each image must cover exactly the rectangle [-1, 0] x [-1, 1]:
+// pixels whose centre sees a point more than 0.05 m inside it are covered, those more
+// than 0.05 m outside are not (the margin is about one pixel).
+TEST_F(GltfFeaturesTest, SparseMorphedAndSkinnedQuadsLandWhereComputed) {
+    GltfBuilder b;
+    b.add(kQuad, kFloat, "VEC3", 4);                                                       // 0
+    b.add(kQuadIndices, kUshort, "SCALAR", 6);                                             // 1
+    const int sparse_indices = b.view(std::vector<uint16_t>{1, 2});
+    const int sparse_values = b.view(std::vector<float>{0, -1, 0, 0, 1, 0});
+    b.accessor(0, kFloat, "VEC3", 4,
+               R"(, "sparse": {"count": 2, "indices": {"bufferView": )" + std::to_string(sparse_indices) +
+                   R"(, "componentType": 5123}, "values": {"bufferView": )" + std::to_string(sparse_values) + "}}");  // 2
+    b.add(std::vector<float>{0, 0, 0, -2, 0, 0, -2, 0, 0, 0, 0, 0}, kFloat, "VEC3", 4);   // 3: morph target
+    b.add(std::vector<uint8_t>{0, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0}, kUbyte, "VEC4", 4);  // 4: JOINTS_0
+    b.add(std::vector<float>{1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, kFloat, "VEC4", 4);     // 5: WEIGHTS_0
+    const std::string material = R"("materials": [{"emissiveFactor": [1, 1, 1], "doubleSided": true}])";
+    const std::string scenes = R"("scenes": [{"nodes": [0]}])";
+    const std::string files[] = {
+        R"("meshes": [{"primitives": [{"attributes": {"POSITION": 2}, "indices": 1, "material": 0}]}],
+  "nodes": [{"mesh": 0}], )" + material + ", " + scenes,
+        R"("meshes": [{"weights": [0.5], "primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0,
+      "targets": [{"POSITION": 3}]}]}],
+  "nodes": [{"mesh": 0}], )" + material + ", " + scenes,
+        R"("meshes": [{"primitives": [{"attributes": {"POSITION": 0, "JOINTS_0": 4, "WEIGHTS_0": 5}, "indices": 1, "material": 0}]}],
+  "skins": [{"joints": [1, 2]}],
+  "nodes": [{"mesh": 0, "skin": 0, "children": [1, 2]}, {}, {"translation": [-1, 0, 0]}], )" + material + ", " + scenes};
+    const char* names[] = {"sparse", "morph", "skin"};
+    for (int f = 0; f < 3; ++f) {
+        std::unique_ptr<RenderSession> session;
+        const RenderedImages images = render(b.write(dir, names[f], files[f]), job("none"), false, &session);
+        ASSERT_EQ(images.hdr.size(), kSize * kSize * 4) << names[f];
+        int inside = 0, outside = 0, wrong = 0;
+        for (uint32_t y = 0; y < kSize; ++y)
+            for (uint32_t x = 0; x < kSize; ++x) {
+                const glm::vec3 p = on_plane(session->camera(), x, y);
+                const float distance_in = std::min({p.x + 1.0f, 0.0f - p.x, p.y + 1.0f, 1.0f - p.y});
+                const bool covered = at(images.hdr, x, y).a > 0.0f;
+                if (distance_in > 0.05f) {
+                    ++inside;
+                    wrong += !covered;
+                } else if (distance_in < -0.05f) {
+                    ++outside;
+                    wrong += covered;
+                }
+            }
+        EXPECT_GT(inside, 300) << names[f];
+        EXPECT_GT(outside, 1000) << names[f];
+        EXPECT_EQ(wrong, 0) << names[f];
+    }
+}
+
 // A quad lying in the XZ plane, framed by the default camera: it must cover a fair part
 // of the frame (seen edge-on from +Z it would cover nothing).
 TEST_F(GltfFeaturesTest, FlatModelInXzIsFramed) {
