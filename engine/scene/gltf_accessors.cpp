@@ -6,6 +6,8 @@ namespace facet::gltf_detail {
 
 namespace {
 
+constexpr uint64_t kMaxDenseBytes = uint64_t(16) << 24;
+
 // `count` elements of `element` bytes at `offset` in bufferView `view`, `stride` apart
 // (0: tightly packed), checked to lie inside the view; returns element 0.
 const uint8_t* view_span(const tinygltf::Model& model, int view_index, size_t offset, size_t count, size_t element,
@@ -28,9 +30,11 @@ const uint8_t* view_span(const tinygltf::Model& model, int view_index, size_t of
 void densify(const tinygltf::Model& model, const tinygltf::Accessor& accessor, size_t element, AccessorData& data,
              const std::string& name) {
     // A sparse accessor's declared count is not backed by bytes in the file: bound it
-    // before allocating (kMaxElements 4-byte scalars' worth).
-    if (uint64_t(data.count) * element > uint64_t(4) * kMaxElements)
-        fail(name + ": sparse accessor of " + std::to_string(data.count) + " elements is too large");
+    // before allocating, at what the largest attribute within the default vertex limit
+    // takes (2^24 VEC4 FLOAT, 256 MiB).
+    if (uint64_t(data.count) * element > kMaxDenseBytes)
+        fail(name + ": sparse accessor of " + std::to_string(data.count) + " elements is too large (more than " +
+             std::to_string(kMaxDenseBytes >> 20) + " MiB dense)");
     auto dense = std::make_shared<std::vector<uint8_t>>(data.count * element, uint8_t(0));
     if (accessor.bufferView >= 0)
         for (size_t i = 0; i < data.count; ++i) std::memcpy(dense->data() + i * element, data.base + i * data.stride, element);

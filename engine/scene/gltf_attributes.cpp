@@ -86,6 +86,11 @@ std::vector<glm::vec3> read_vec3s(const AccessorData& d, const std::string& wher
     return out;
 }
 
+// Targets x vertices a primitive may displace: far beyond real assets (100 targets of
+// 160,000 vertices), and bounds what sparse targets on zeros, cheap in a file, can cost
+// (12 bytes per attribute each).
+constexpr uint64_t kMaxMorphedVertices = uint64_t(1) << 24;
+
 void read_targets(const tinygltf::Model& model, const tinygltf::Primitive& primitive, const std::string& where,
                   size_t count, PrimitiveDeform& deform) {
     for (size_t t = 0; t < primitive.targets.size(); ++t) {
@@ -134,6 +139,9 @@ PrimitiveVertices read_vertices(const tinygltf::Model& model, const tinygltf::Pr
     if (!positions) fail(where + ": no POSITION attribute");
     const size_t count = positions->count;
     if (count == 0) fail(where + ": no vertices");
+    if (uint64_t(primitive.targets.size()) * count > kMaxMorphedVertices)
+        fail(where + ": " + std::to_string(primitive.targets.size()) + " morph targets of " + std::to_string(count) +
+             " vertices exceed the limit of " + std::to_string(kMaxMorphedVertices) + " morphed vertices");
     auto normals = attribute(model, primitive.attributes, "NORMAL", where, count);
     auto tangents = attribute(model, primitive.attributes, "TANGENT", where, count);
     auto uv0 = attribute(model, primitive.attributes, "TEXCOORD_0", where, count);

@@ -178,6 +178,28 @@ TEST(GltfCore, SparseAccessorsWithAndWithoutBaseView) {
                  "POSITION: accessor 4 sparse index 9 out of range (the accessor has 4 elements)");
 }
 
+// Sparse accessors on zeros cost nothing in a file, whatever count they declare: an
+// attribute's densified size and a primitive's morphed vertices are bounded.
+TEST(GltfCore, SparseCountsAreBoundedBeforeAllocating) {
+    GltfTempDir dir("gltf_core");
+    GltfBuilder b;
+    b.add(kQuad, kFloat, "VEC3", 4);
+    b.add(kQuadIndices, kUshort, "SCALAR", 6);
+    const int indices = b.view(std::vector<uint8_t>{1, 0, 0, 0});
+    const int values = b.view(std::vector<float>{1, 1, 1, 1});
+    const std::string sparse = R"(, "sparse": {"count": 1, "indices": {"bufferView": )" + std::to_string(indices) +
+                               R"(, "componentType": 5121}, "values": {"bufferView": )" + std::to_string(values) + "}}";
+    b.accessor(-1, kFloat, "VEC4", size_t(1) << 25, sparse);  // 2: 512 MiB dense
+    expect_error(b.write(dir, "huge_colours", one_mesh(R"("POSITION": 0, "COLOR_0": 2)", 1)),
+                 "COLOR_0: accessor 2: sparse accessor of 33554432 elements is too large (more than 256 MiB dense)");
+    b.accessor(-1, kFloat, "VEC3", size_t(1) << 22, sparse);  // 3: 4 Mi positions, 48 MiB dense
+    std::string members = one_mesh(R"("POSITION": 3)", -1);
+    const std::string five_targets = R"(, "targets": [{"POSITION": 3}, {"POSITION": 3}, {"POSITION": 3}, {"POSITION": 3}, {"POSITION": 3}]})";
+    members.replace(members.find(R"("mode": 4})"), 10, std::string(R"("mode": 4)") + five_targets);
+    expect_error(b.write(dir, "many_targets", members),
+                 "5 morph targets of 4194304 vertices exceed the limit of 16777216 morphed vertices");
+}
+
 std::vector<uint32_t> loaded_indices(const std::string& path, Topology expected) {
     Scene scene = load_ok(path);
     if (scene.primitives.size() != 1) return {};
