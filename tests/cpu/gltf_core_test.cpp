@@ -31,6 +31,13 @@ std::string one_mesh(const std::string& attributes, int indices, int mode = 4, c
   "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0)" + more;
 }
 
+std::string replaced_once(std::string text, const std::string& from, const std::string& to) {
+    const size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    return text;
+}
+
 Scene load_ok(const std::string& path, int scene = -1) {
     Result<Scene> loaded = load_gltf(path, {}, scene);
     EXPECT_TRUE(loaded.ok()) << (loaded.ok() ? "" : loaded.error().message);
@@ -143,6 +150,29 @@ TEST(GltfCore, EveryComponentTypeNormalizedOrNot) {
         EXPECT_NEAR(scene.vertices[1].position.x, 100.0f / c.scale, 1e-6f) << c.type << " " << c.normalized;
         EXPECT_NEAR(scene.vertices[2].position.y, 100.0f / c.scale, 1e-6f) << c.type << " " << c.normalized;
     }
+}
+
+// KHR_mesh_quantization's normals and tangents: normalized BYTE and SHORT, unit length
+// after loading; an unnormalized integer normal is refused by name.
+TEST(GltfCore, QuantisedNormalsAndTangents) {
+    GltfTempDir dir("gltf_core");
+    GltfBuilder b;
+    b.add(kQuad, kFloat, "VEC3", 4);
+    b.add(kQuadIndices, kUshort, "SCALAR", 6);
+    b.add(std::vector<int8_t>{0, 0, 127, 0, 0, 0, 127, 0, 0, 0, 127, 0, 0, 0, 127, 0}, kByte, "VEC3", 4);  // padded
+    b.views.back().insert(b.views.back().size() - 1, R"(, "byteStride": 4)");
+    b.accessors.back().insert(b.accessors.back().size() - 1, R"(, "normalized": true)");
+    b.add(std::vector<int16_t>{32767, 0, 0, -32767, 32767, 0, 0, -32767, 32767, 0, 0, -32767, 32767, 0, 0, -32767},
+          kShort, "VEC4", 4, R"(, "normalized": true)");
+    Scene scene = load_ok(b.write(dir, "quantised", one_mesh(R"("POSITION": 0, "NORMAL": 2, "TANGENT": 3)", 1)));
+    ASSERT_EQ(scene.vertices.size(), 4u);
+    for (const Vertex& v : scene.vertices) {
+        expect_near(glm::vec4(v.normal, 0.0f), glm::vec4(0, 0, 1, 0));
+        expect_near(v.tangent, glm::vec4(1, 0, 0, -1));
+    }
+    b.accessors[2] = replaced_once(b.accessors[2], R"(, "normalized": true)", "");
+    expect_error(b.write(dir, "integer_normals", one_mesh(R"("POSITION": 0, "NORMAL": 2)", 1)),
+                 "NORMAL must be VEC3 FLOAT or normalized BYTE/SHORT");
 }
 
 TEST(GltfCore, SparseAccessorsWithAndWithoutBaseView) {
