@@ -29,11 +29,12 @@ const uint8_t* view_span(const tinygltf::Model& model, int view_index, size_t of
 // The accessor's elements, tightly packed, with its sparse substitutions applied.
 void densify(const tinygltf::Model& model, const tinygltf::Accessor& accessor, size_t element, AccessorData& data,
              const std::string& name) {
-    // A sparse accessor's declared count is not backed by bytes in the file: bound it
-    // before allocating, at what the largest attribute within the default vertex limit
-    // takes (2^24 VEC4 FLOAT, 256 MiB).
+    // A sparse or view-less accessor's declared count is not backed by bytes in the file:
+    // bound it before allocating, at what the largest attribute within the default vertex
+    // limit takes (2^24 VEC4 FLOAT, 256 MiB).
     if (uint64_t(data.count) * element > kMaxDenseBytes)
-        fail(name + ": sparse accessor of " + std::to_string(data.count) + " elements is too large (more than " +
+        fail(name + ": " + (accessor.sparse.isSparse ? "sparse" : "view-less") + " accessor of " +
+             std::to_string(data.count) + " elements is too large (more than " +
              std::to_string(kMaxDenseBytes >> 20) + " MiB dense)");
     auto dense = std::make_shared<std::vector<uint8_t>>(data.count * element, uint8_t(0));
     if (accessor.bufferView >= 0)
@@ -115,12 +116,12 @@ AccessorData accessor_data(const tinygltf::Model& model, int index, const std::s
     data.component_type = accessor.componentType;
     data.type = accessor.type;
     data.normalized = accessor.normalized;
-    if (accessor.bufferView >= 0 || !accessor.sparse.isSparse) {
-        // Without a bufferView (and not sparse) an accessor is all zeros, which glTF allows
-        // only for sparse ones; refusing it matches what exporters write.
+    // Without a bufferView an accessor is zeros (glTF 3.6.2.1), which a sparse one may
+    // then override; both are made dense.
+    if (accessor.bufferView < -1) fail(name + ": bufferView " + std::to_string(accessor.bufferView) + " out of range");
+    if (accessor.bufferView >= 0)
         data.base = view_span(model, accessor.bufferView, accessor.byteOffset, accessor.count, element, data.stride, name);
-    }
-    if (accessor.sparse.isSparse) densify(model, accessor, element, data, name);
+    if (accessor.sparse.isSparse || accessor.bufferView < 0) densify(model, accessor, element, data, name);
     return data;
 }
 

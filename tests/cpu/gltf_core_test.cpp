@@ -197,6 +197,12 @@ TEST(GltfCore, SparseAccessorsWithAndWithoutBaseView) {
     EXPECT_EQ(on_zeros.vertices[1].position, glm::vec3(5, 0, 0));
     EXPECT_EQ(on_zeros.vertices[2].position, glm::vec3(0, 0, 0));
     EXPECT_EQ(on_zeros.vertices[3].position, glm::vec3(0, 7, 0));
+    // Without a bufferView and not sparse: zeros (here black vertex colours).
+    GltfBuilder zeros = b;
+    zeros.accessor(-1, kFloat, "VEC3", 4);  // 4
+    Scene black = load_ok(zeros.write(dir, "zeros", one_mesh(R"("POSITION": 0, "COLOR_0": 4)", 3)));
+    ASSERT_EQ(black.vertices.size(), 4u);
+    for (const Vertex& v : black.vertices) expect_near(v.color, glm::vec4(0, 0, 0, 1));
 
     // An index beyond the accessor's count: one error naming the file and the index.
     GltfBuilder bad = b;
