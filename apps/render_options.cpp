@@ -25,6 +25,7 @@ float number_option(const cli::Parsed& a, const char* name, float min, float max
 
 void add_render_options(cli::Parser& p) {
     p.option("--model", "PATH|builtin:NAME", "model to render (default builtin:spheres)")
+        .option("--scene", "N", "the glTF file's scene N (default: the file's default scene, else scene 0)")
         .option("--env", "PATH|builtin:NAME|none", "environment for image-based lighting (default builtin:sky)")
         .option("--width", "W", "image width (default 1280)")
         .option("--height", "H", "image height (default 720)")
@@ -71,6 +72,7 @@ void add_render_options(cli::Parser& p) {
 
 void parse_render_options(const cli::Parsed& a, RenderJob& j) {
     j.model = a.get("--model", j.model);
+    if (a.has("--scene")) j.model_scene = cli::parse_int(a.get("--scene"), "--scene", 0, 1 << 30);
     j.env = a.get("--env", j.env);
     if (a.has("--width")) j.frame.width = uint32_t(cli::parse_int(a.get("--width"), "--width", 1, 16384));
     if (a.has("--height")) j.frame.height = uint32_t(cli::parse_int(a.get("--height"), "--height", 1, 16384));

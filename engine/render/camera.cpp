@@ -40,6 +40,20 @@ CameraView frame_bounds(glm::vec3 bounds_min, glm::vec3 bounds_max, float yfov, 
     // Seen from +Z, the box's front face must fit both fields of view (with a margin);
     // the front face is half a depth nearer than the centre.
     const float tan_y = std::tan(yfov * 0.5f), tan_x = tan_y * aspect;
+    // The box's projected area seen along a unit direction d is proportional to
+    // |d.x| hy hz + |d.y| hx hz + |d.z| hx hy. +Z stays the view unless another
+    // direction sees clearly more (so that ordinary models keep their framing).
+    const float from_z = half.x * half.y, from_x = half.y * half.z;
+    const float from_above = 0.70710678f * (half.x * half.z + half.x * half.y);
+    if (std::max(from_x, from_above) > 2.0f * from_z) {
+        const float radius = glm::length(half);
+        const float tan_min = std::min(tan_y, tan_x);
+        const float sphere_distance = 1.1f * radius * std::sqrt(1.0f + 1.0f / (tan_min * tan_min));
+        const bool side = from_x >= from_above;
+        CameraView c = orbit_camera(centre, side ? 90.0f : 0.0f, side ? 0.0f : 45.0f, sphere_distance, yfov);
+        c.znear = std::max(1e-3f, (sphere_distance - radius) * 0.25f);
+        return c;
+    }
     const float distance = 1.1f * std::max(half.y / tan_y, half.x / tan_x) + half.z;
     CameraView c = orbit_camera(centre, 0.0f, 0.0f, distance, yfov);
     c.znear = std::max(1e-3f, (distance - half.z) * 0.25f);

@@ -76,23 +76,40 @@ ForwardRenderer::Slot& ForwardRenderer::slot(uint32_t frame) {
     return slots_[frame];
 }
 
-Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene, uint32_t material, View view,
+Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene, uint32_t instance, View view,
                                                            const Target& target, bool ibl,
                                                            const FrameSettings& settings) {
+    const Instance& in = scene.scene().instances.at(instance);
+    const Primitive& primitive = scene.scene().primitives.at(in.primitive);
+    const uint32_t material = primitive.material;
     const Material& m = scene.scene().materials.at(material);
     std::vector<ShaderDefine> defines;
     auto define_if = [&](bool on, const char* name) {
         if (on) defines.push_back({name, "1"});
     };
-    define_if(scene.has_texture(material, TextureSlot::base_color), "HAS_BASE_COLOR_MAP");
-    define_if(scene.has_texture(material, TextureSlot::metallic_roughness), "HAS_METALLIC_ROUGHNESS_MAP");
-    define_if(scene.has_texture(material, TextureSlot::normal), "HAS_NORMAL_MAP");
-    define_if(scene.has_texture(material, TextureSlot::occlusion), "HAS_OCCLUSION_MAP");
-    define_if(scene.has_texture(material, TextureSlot::emissive), "HAS_EMISSIVE_MAP");
+    const TextureRef* refs[] = {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture,
+                                &m.occlusion_texture, &m.emissive_texture};
+    const TextureSlot slots[] = {TextureSlot::base_color, TextureSlot::metallic_roughness, TextureSlot::normal,
+                                 TextureSlot::occlusion, TextureSlot::emissive};
+    const char* maps[] = {"HAS_BASE_COLOR_MAP", "HAS_METALLIC_ROUGHNESS_MAP", "HAS_NORMAL_MAP", "HAS_OCCLUSION_MAP",
+                          "HAS_EMISSIVE_MAP"};
+    const char* uv1[] = {"BASE_COLOR_UV1", "METALLIC_ROUGHNESS_UV1", "NORMAL_UV1", "OCCLUSION_UV1", "EMISSIVE_UV1"};
+    for (size_t t = 0; t < 5; ++t) {
+        const bool has = scene.has_texture(material, slots[t]);
+        define_if(has, maps[t]);
+        define_if(has && refs[t]->uv_set == 1, uv1[t]);
+    }
+    define_if(m.alpha_mode == AlphaMode::opaque, "ALPHA_OPAQUE");
     define_if(m.alpha_mode == AlphaMode::mask, "ALPHA_MASK");
     const bool blend = m.alpha_mode == AlphaMode::blend && view == View::final_color;
     define_if(blend, "ALPHA_BLEND");
     define_if(m.double_sided, "DOUBLE_SIDED");
+    // A mirroring world matrix (negative determinant) turns the winding around: its
+    // front faces are clockwise on screen, so it culls the other side.
+    const bool mirrored = glm::determinant(glm::mat3(in.world)) < 0.0f;
+    define_if(mirrored && m.double_sided, "MIRRORED");
+    define_if(primitive.topology != Topology::triangles, "UNLIT");
+    define_if(primitive.topology == Topology::points, "POINTS");
     define_if(ibl, "USE_IBL");
     define_if(settings.brdf == BrdfModel::thesis, "BRDF_THESIS");
     define_if(ibl && settings.multiscatter, "MULTISCATTER");
@@ -103,18 +120,26 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     desc.color_formats = {target.color};
     desc.depth_format = target.depth;
     desc.samples = target.samples;
-    desc.cull = m.double_sided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT;
+    desc.cull = m.double_sided || primitive.topology != Topology::triangles ? VK_CULL_MODE_NONE
+                : mirrored                                                  ? VK_CULL_MODE_FRONT_BIT
+                                                                            : VK_CULL_MODE_BACK_BIT;
+    desc.topology = primitive.topology == Topology::points  ? VK_PRIMITIVE_TOPOLOGY_POINT_LIST
+                    : primitive.topology == Topology::lines ? VK_PRIMITIVE_TOPOLOGY_LINE_LIST
+                                                            : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
     desc.vertex_bindings = {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
     desc.vertex_attributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
                               {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
                               {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
-                              {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)}};
+                              {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)},
+                              {4, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, color)},
+                              {5, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv1)}};
     desc.depth_test = true;
     desc.depth_write = !blend;
     desc.alpha_blend = blend;
     auto pipeline = programs_.graphics("render/forward.vert", "render/forward.frag", desc, defines);
     if (pipeline) {
-        std::string key = std::to_string(target.samples) + (m.double_sided ? "|two-sided" : "");
+        std::string key = std::to_string(target.samples) + "|cull" + std::to_string(desc.cull) + "|t" +
+                          std::to_string(desc.topology);
         for (const ShaderDefine& d : defines) key += "|" + d.name + "=" + d.value;
         variants_.insert(key);
     }
@@ -126,8 +151,7 @@ Result<std::vector<const Pipeline*>> ForwardRenderer::pipelines(const GpuScene& 
     const Scene& scene = gpu.scene();
     std::vector<const Pipeline*> out(scene.instances.size());
     for (uint32_t i = 0; i < scene.instances.size(); ++i) {
-        const uint32_t material = scene.primitives.at(scene.instances[i].primitive).material;
-        auto p = material_pipeline(gpu, material, view, target, ibl, s);
+        auto p = material_pipeline(gpu, i, view, target, ibl, s);
         if (!p) return p.error();
         out[i] = *p;
     }

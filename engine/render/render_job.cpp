@@ -47,7 +47,7 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
             return Error{"--preset: unknown preset '" + *job.preset + "' (" + material_preset_names() + ")"};
     }
     auto scene = job.model.rfind("builtin:", 0) == 0 ? builtin_scene(job.model, preset)
-                                                      : load_gltf(job.model, job.model_limits);
+                                                      : load_gltf(job.model, job.model_limits, job.model_scene);
     if (!scene) return scene.error();
     if (preset && !is_builtin_scene(job.model)) apply_material_preset(*scene, *preset);
     if (progress)

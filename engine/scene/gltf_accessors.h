@@ -6,7 +6,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <string>
+#include <vector>
 
 namespace facet::gltf_detail {
 
@@ -17,13 +19,21 @@ struct AccessorData {
     int component_type = 0;
     int type = 0;  // TINYGLTF_TYPE_*
     bool normalized = false;
+    // Sparse accessors and those without a bufferView (all zeros) are made dense here;
+    // `base` then points into this copy.
+    std::shared_ptr<const std::vector<uint8_t>> dense;
 };
 
 // Every bufferView inside its buffer, so later reads through a view need only check
 // against the view.
 void validate_buffer_views(const tinygltf::Model& model);
 
+// Elements of an accessor type (SCALAR 1 ... MAT4 16); 0 for an unknown type.
+size_t component_count(int type);
+
 // Accessor `index`, with every element it spans checked to lie inside its bufferView.
+// Sparse accessors (with or without a base bufferView) come back densified, their
+// indices checked to be in range and strictly increasing.
 AccessorData accessor_data(const tinygltf::Model& model, int index, const std::string& where);
 
 // The readers below are inline because they run once per vertex component: keeping

@@ -25,7 +25,7 @@ using namespace gltf_detail;
 
 namespace {
 
-Scene convert(const tinygltf::Model& model, const GltfLimits& limits) {
+Scene convert(const tinygltf::Model& model, const GltfLimits& limits, int scene_index) {
     // A required extension changes what the data means (compressed meshes, quantised
     // attributes, other image formats): loading on without it would draw garbage.
     for (const std::string& extension : model.extensionsRequired)
@@ -40,13 +40,14 @@ Scene convert(const tinygltf::Model& model, const GltfLimits& limits) {
     for (size_t i = 0; i < model.materials.size(); ++i) scene.materials.push_back(convert_material(model, i));
 
     bool needs_default_material = false;
+    std::vector<PrimitiveDeform> deforms;  // by primitive, for the nodes that skin or morph them
     for (size_t m = 0; m < model.meshes.size(); ++m) {
         const tinygltf::Mesh& mesh = model.meshes[m];
         Mesh out;
         out.name = mesh.name;
         for (size_t p = 0; p < mesh.primitives.size(); ++p) {
             std::string where = label("mesh", m, mesh.name) + " primitive " + std::to_string(p);
-            load_primitive(model, mesh.primitives[p], where, needs_default_material, scene);
+            deforms.push_back(load_primitive(model, mesh.primitives[p], where, needs_default_material, scene));
             out.primitives.push_back(uint32_t(scene.primitives.size() - 1));
         }
         scene.meshes.push_back(std::move(out));
@@ -56,13 +57,13 @@ Scene convert(const tinygltf::Model& model, const GltfLimits& limits) {
         fallback.name = "default";
         scene.materials.push_back(fallback);
     }
-    place_nodes(model, scene);
+    place_nodes(model, deforms, limits, scene_index, scene);
     return scene;
 }
 
 }  // namespace
 
-Result<Scene> load_gltf(const std::string& path, const GltfLimits& limits) {
+Result<Scene> load_gltf(const std::string& path, const GltfLimits& limits, int scene_index) {
     try {
         FileBudget budget{limits.max_file_bytes};
         std::vector<uint8_t> bytes = read_file(path, budget);
@@ -71,7 +72,7 @@ Result<Scene> load_gltf(const std::string& path, const GltfLimits& limits) {
         EncodedImages encoded;
         tinygltf::Model model = parse(path, bytes, encoded, budget);
         std::vector<uint8_t>().swap(bytes);  // tinygltf copied what it needs
-        Scene scene = convert(model, limits);
+        Scene scene = convert(model, limits, scene_index);
         // Images last: the cheap structural checks above fail faster on broken files.
         const std::vector<ImagePlan> plans = plan_images(model, encoded, scene, limits);
         for (size_t i = 0; i < model.images.size(); ++i) {

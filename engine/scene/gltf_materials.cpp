@@ -20,8 +20,9 @@ TextureRef texture_ref(const tinygltf::Model& model, int texture, int tex_coord,
     if (!in_range(texture, model.textures.size()))
         fail(name + " texture " + std::to_string(texture) + " out of range (" + std::to_string(model.textures.size()) +
              " textures)");
-    if (tex_coord != 0)
-        fail(name + " uses TEXCOORD_" + std::to_string(tex_coord) + "; only TEXCOORD_0 is supported");
+    // Vertices carry two uv sets; no sample model uses a third.
+    if (tex_coord != 0 && tex_coord != 1)
+        fail(name + " uses TEXCOORD_" + std::to_string(tex_coord) + "; only TEXCOORD_0 and TEXCOORD_1 are supported");
     const tinygltf::Texture& t = model.textures[size_t(texture)];
     if (!in_range(t.source, model.images.size()))
         fail(name + ": texture " + std::to_string(texture) + " image " + std::to_string(t.source) + " out of range");
@@ -29,6 +30,7 @@ TextureRef texture_ref(const tinygltf::Model& model, int texture, int tex_coord,
         fail(name + ": texture " + std::to_string(texture) + " sampler " + std::to_string(t.sampler) + " out of range");
     ref.image = t.source;
     ref.sampler = t.sampler;
+    ref.uv_set = uint32_t(tex_coord);
     return ref;
 }
 

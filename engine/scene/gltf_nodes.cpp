@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -12,6 +13,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "scene/tangents.h"
+
+#include "scene/gltf_deform.h"
 #include "scene/gltf_errors.h"
 
 namespace facet::gltf_detail {
@@ -162,14 +166,117 @@ std::optional<Light> node_light(const tinygltf::Model& model, const tinygltf::No
     return out;
 }
 
+// Every node's world matrix (whatever scene it is in: joints may lie outside the drawn
+// one), parents before children.
+std::vector<glm::mat4> world_matrices(const tinygltf::Model& model, const std::vector<int>& parent) {
+    std::vector<glm::mat4> world(model.nodes.size(), glm::mat4(1.0f));
+    // Iterative, so that a deep (hostile) hierarchy cannot overflow the call stack.
+    std::vector<int> stack;
+    for (size_t i = 0; i < model.nodes.size(); ++i)
+        if (parent[i] == -1) stack.push_back(int(i));
+    while (!stack.empty()) {
+        const int index = stack.back();
+        stack.pop_back();
+        const tinygltf::Node& node = model.nodes[size_t(index)];
+        const std::string where = label("node", size_t(index), node.name);
+        const glm::mat4 parent_world = parent[size_t(index)] == -1 ? glm::mat4(1.0f) : world[size_t(parent[size_t(index)])];
+        glm::mat4& m = world[size_t(index)];
+        m = parent_world * local_matrix(node, where);
+        // Finite doubles can still overflow as floats (a scale of 1e39) or in the product.
+        for (int c = 0; c < 4; ++c)
+            if (!std::isfinite(m[c].x) || !std::isfinite(m[c].y) || !std::isfinite(m[c].z) || !std::isfinite(m[c].w))
+                fail(where + ": world transform is not finite (a scale or translation too large for floats)");
+        for (int child : node.children) stack.push_back(child);
+    }
+    return world;
+}
+
+// The morph weights a node gives its mesh: node.weights over mesh.weights (empty: none).
+std::vector<float> morph_weights(const tinygltf::Node& node, const tinygltf::Mesh& mesh, const std::string& where) {
+    const std::vector<double>& chosen = !node.weights.empty() ? node.weights : mesh.weights;
+    std::vector<float> out;
+    for (double w : chosen) {
+        if (!std::isfinite(w)) fail(where + ": a morph weight is not finite");
+        out.push_back(float(w));
+    }
+    return out;
+}
+
+// Draws mesh `mesh_index` for the node at `index`, deforming copies where it skins or morphs.
+void place_mesh(const tinygltf::Model& model, int index, const std::vector<glm::mat4>& world,
+                const std::vector<SkinData>& skins, const std::vector<PrimitiveDeform>& deforms,
+                const GltfLimits& limits, Scene& scene) {
+    const tinygltf::Node& node = model.nodes[size_t(index)];
+    const std::string where = label("node", size_t(index), node.name);
+    if (!in_range(node.mesh, scene.meshes.size())) fail(where + ": mesh " + std::to_string(node.mesh) + " out of range");
+    if (node.skin != -1 && !in_range(node.skin, skins.size()))
+        fail(where + ": skin " + std::to_string(node.skin) + " out of range (" + std::to_string(skins.size()) + " skins)");
+    const tinygltf::Mesh& mesh = model.meshes[size_t(node.mesh)];
+    const std::vector<float> weights = morph_weights(node, mesh, where);
+    std::vector<glm::mat4> joints;
+    if (node.skin != -1) {
+        const SkinData& skin = skins[size_t(node.skin)];
+        for (size_t j = 0; j < skin.joints.size(); ++j)
+            joints.push_back(world[size_t(skin.joints[j])] * skin.inverse_bind[j]);
+    }
+    const std::string name = node.name.empty() ? where : node.name;
+    const std::vector<uint32_t> primitives = scene.meshes[size_t(node.mesh)].primitives;
+    for (size_t p = 0; p < primitives.size(); ++p) {
+        const uint32_t primitive = primitives[p];
+        const PrimitiveDeform& deform = deforms[primitive];
+        const std::string at = where + " " + label("mesh", size_t(node.mesh), mesh.name) + " primitive " + std::to_string(p);
+        if (!deform.targets.empty() && !weights.empty() && weights.size() != deform.targets.size())
+            fail(at + ": " + std::to_string(weights.size()) + " morph weights for " +
+                 std::to_string(deform.targets.size()) + " morph targets");
+        const bool morphs = !deform.targets.empty() && std::any_of(weights.begin(), weights.end(), [](float w) { return w != 0.0f; });
+        const bool skinned = !joints.empty() && !deform.influences.empty();
+        if (!morphs && !skinned) {
+            scene.instances.push_back({primitive, world[size_t(index)], name});
+            continue;
+        }
+        Primitive copy = scene.primitives[primitive];
+        if (scene.vertices.size() + copy.vertex_count > limits.max_vertices)
+            fail(at + ": its skinned or morphed copy takes the scene past the limit of " +
+                 std::to_string(limits.max_vertices) + " vertices");
+        const std::span<const Vertex> base(scene.vertices.data() + copy.vertex_offset, copy.vertex_count);
+        const std::span<const uint32_t> indices(scene.indices.data() + copy.first_index, copy.index_count);
+        const Material* material = copy.material < scene.materials.size() ? &scene.materials[copy.material] : nullptr;
+        bool mirrored = false;
+        std::vector<Vertex> vertices = deform_vertices(
+            base, indices, copy.topology, deform, morphs ? std::span<const float>(weights) : std::span<const float>(),
+            skinned ? std::span<const glm::mat4>(joints) : std::span<const glm::mat4>(),
+            material ? material->normal_texture.uv_set : 0u, at, mirrored);
+        if (mirrored && copy.topology == Topology::triangles) {
+            // A mirroring skin turns the winding: its copy gets its own, reversed triangles.
+            if (scene.indices.size() + copy.index_count > limits.max_indices)
+                fail(at + ": its mirrored skinned copy takes the scene past the limit of " +
+                     std::to_string(limits.max_indices) + " indices");
+            const std::vector<uint32_t> reversed_from(indices.begin(), indices.end());
+            copy.first_index = uint32_t(scene.indices.size());
+            for (size_t t = 0; t + 2 < reversed_from.size(); t += 3)
+                scene.indices.insert(scene.indices.end(), {reversed_from[t], reversed_from[t + 2], reversed_from[t + 1]});
+        }
+        copy.vertex_offset = uint32_t(scene.vertices.size());
+        set_bounds(copy, vertices);
+        scene.vertices.insert(scene.vertices.end(), vertices.begin(), vertices.end());
+        scene.primitives.push_back(copy);
+        // Skinned vertices are in world space already: the node's own transform does not apply.
+        scene.instances.push_back({uint32_t(scene.primitives.size() - 1), skinned ? glm::mat4(1.0f) : world[size_t(index)], name});
+    }
+}
+
 }  // namespace
 
-void place_nodes(const tinygltf::Model& model, Scene& scene) {
+void place_nodes(const tinygltf::Model& model, const std::vector<PrimitiveDeform>& deforms, const GltfLimits& limits,
+                 int scene_index, Scene& scene) {
     std::vector<int> parent = check_hierarchy(model);
+    const std::vector<glm::mat4> world = world_matrices(model, parent);
+    const std::vector<SkinData> skins = read_skins(model);
     std::vector<int> roots;
-    if (model.defaultScene != -1 || !model.scenes.empty()) {
-        int chosen = model.defaultScene != -1 ? model.defaultScene : 0;
-        if (!in_range(chosen, model.scenes.size())) fail("scene " + std::to_string(chosen) + " out of range");
+    if (scene_index != -1 || model.defaultScene != -1 || !model.scenes.empty()) {
+        int chosen = scene_index != -1 ? scene_index : model.defaultScene != -1 ? model.defaultScene : 0;
+        if (!in_range(chosen, model.scenes.size()))
+            fail("scene " + std::to_string(chosen) + " out of range (" + std::to_string(model.scenes.size()) + " scenes)");
         roots = model.scenes[size_t(chosen)].nodes;
         std::vector<bool> listed(model.nodes.size(), false);
         for (int root : roots) {
@@ -189,30 +296,17 @@ void place_nodes(const tinygltf::Model& model, Scene& scene) {
             if (parent[i] == -1) roots.push_back(int(i));
     }
 
-    // Iterative, so that a deep (hostile) hierarchy cannot overflow the call stack.
-    std::vector<std::pair<int, glm::mat4>> stack;
-    for (auto root = roots.rbegin(); root != roots.rend(); ++root) stack.emplace_back(*root, glm::mat4(1.0f));
+    std::vector<int> stack(roots.rbegin(), roots.rend());
     while (!stack.empty()) {
-        auto [index, parent_world] = stack.back();
+        const int index = stack.back();
         stack.pop_back();
         const tinygltf::Node& node = model.nodes[size_t(index)];
         std::string where = label("node", size_t(index), node.name);
-        glm::mat4 world = parent_world * local_matrix(node, where);
-        // Finite doubles can still overflow as floats (a scale of 1e39) or in the product.
-        for (int c = 0; c < 4; ++c)
-            if (!std::isfinite(world[c].x) || !std::isfinite(world[c].y) || !std::isfinite(world[c].z) ||
-                !std::isfinite(world[c].w))
-                fail(where + ": world transform is not finite (a scale or translation too large for floats)");
-        if (node.mesh != -1) {
-            if (!in_range(node.mesh, scene.meshes.size()))
-                fail(where + ": mesh " + std::to_string(node.mesh) + " out of range");
-            for (uint32_t primitive : scene.meshes[size_t(node.mesh)].primitives)
-                scene.instances.push_back({primitive, world, node.name.empty() ? where : node.name});
-        }
-        if (node.camera != -1) scene.cameras.push_back(convert_camera(model, node, world, where));
-        if (auto light = node_light(model, node, world, where)) scene.lights.push_back(*light);
-        for (auto child = node.children.rbegin(); child != node.children.rend(); ++child)
-            stack.emplace_back(*child, world);
+        const glm::mat4& m = world[size_t(index)];
+        if (node.mesh != -1) place_mesh(model, index, world, skins, deforms, limits, scene);
+        if (node.camera != -1) scene.cameras.push_back(convert_camera(model, node, m, where));
+        if (auto light = node_light(model, node, m, where)) scene.lights.push_back(*light);
+        for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) stack.push_back(*child);
     }
 }
 

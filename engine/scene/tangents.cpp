@@ -1,6 +1,7 @@
 #include "scene/tangents.h"
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -70,6 +71,23 @@ void generate_tangents(std::span<Vertex> vertices, std::span<const uint32_t> ind
         // it, so an unmirrored mapping has dP/dv opposite to cross(n, t): w = +1.
         float w = glm::dot(glm::cross(n, t), dv_sums[v]) > 0.0f ? -1.0f : 1.0f;
         vertices[v].tangent = glm::vec4(t, w);
+    }
+}
+
+void generate_tangents_for(std::span<Vertex> vertices, std::span<const uint32_t> indices, uint32_t uv_set) {
+    if (uv_set == 0) return generate_tangents(vertices, indices);
+    // The generator reads Vertex::uv: lend it the other set for the while.
+    for (Vertex& v : vertices) std::swap(v.uv, v.uv1);
+    generate_tangents(vertices, indices);
+    for (Vertex& v : vertices) std::swap(v.uv, v.uv1);
+}
+
+void set_bounds(Primitive& primitive, std::span<const Vertex> vertices) {
+    if (vertices.empty()) return;
+    primitive.bounds_min = primitive.bounds_max = vertices[0].position;
+    for (const Vertex& v : vertices) {
+        primitive.bounds_min = glm::min(primitive.bounds_min, v.position);
+        primitive.bounds_max = glm::max(primitive.bounds_max, v.position);
     }
 }
 

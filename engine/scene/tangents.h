@@ -18,4 +18,11 @@ void generate_normals(std::span<Vertex> vertices, std::span<const uint32_t> indi
 // handedness: bitangent = cross(normal, tangent.xyz) * w. Expects unit normals.
 void generate_tangents(std::span<Vertex> vertices, std::span<const uint32_t> indices);
 
+// The same from uv set `uv_set` (0: Vertex::uv, 1: Vertex::uv1), the one the normal
+// texture is sampled with.
+void generate_tangents_for(std::span<Vertex> vertices, std::span<const uint32_t> indices, uint32_t uv_set);
+
+// Primitive bounds from its vertices' positions.
+void set_bounds(Primitive& primitive, std::span<const Vertex> vertices);
+
 }  // namespace facet

@@ -4,7 +4,10 @@
 // for the BRDF model of the frame; this file reads the material and the frame's data.
 // Variants (defines) carry only the features a material uses: HAS_BASE_COLOR_MAP,
 // HAS_METALLIC_ROUGHNESS_MAP, HAS_NORMAL_MAP, HAS_OCCLUSION_MAP, HAS_EMISSIVE_MAP,
-// ALPHA_MASK, ALPHA_BLEND, DOUBLE_SIDED, USE_IBL, BRDF_THESIS (the thesis' model instead
+// ALPHA_OPAQUE (alpha written as 1), ALPHA_MASK, ALPHA_BLEND, DOUBLE_SIDED, MIRRORED (the
+// instance's world matrix mirrors: its front faces wind clockwise), UNLIT (points and
+// lines: base colour x vertex colour + emissive), <SLOT>_UV1 (a texture sampled with
+// TEXCOORD_1), USE_IBL, BRDF_THESIS (the thesis' model instead
 // of glTF's), MULTISCATTER (energy compensation), DOMINANT_DIRECTION (bent specular
 // lookup), VIEW (what is written: render/views.glsl).
 #include "facet/shading.glsl"
@@ -27,6 +30,35 @@ layout(location = 2) in vec2 in_uv;
 #ifdef HAS_NORMAL_MAP
 layout(location = 3) in vec4 in_tangent;
 #endif
+layout(location = 4) in vec4 in_color;
+layout(location = 5) in vec2 in_uv1;
+
+// Each texture's uv set (glTF's texCoord).
+#ifdef BASE_COLOR_UV1
+#define BASE_COLOR_UV in_uv1
+#else
+#define BASE_COLOR_UV in_uv
+#endif
+#ifdef METALLIC_ROUGHNESS_UV1
+#define METALLIC_ROUGHNESS_UV in_uv1
+#else
+#define METALLIC_ROUGHNESS_UV in_uv
+#endif
+#ifdef NORMAL_UV1
+#define NORMAL_UV in_uv1
+#else
+#define NORMAL_UV in_uv
+#endif
+#ifdef OCCLUSION_UV1
+#define OCCLUSION_UV in_uv1
+#else
+#define OCCLUSION_UV in_uv
+#endif
+#ifdef EMISSIVE_UV1
+#define EMISSIVE_UV in_uv1
+#else
+#define EMISSIVE_UV in_uv
+#endif
 
 layout(location = 0) out vec4 out_color;
 
@@ -38,30 +70,34 @@ struct Surface {
 };
 
 Surface surface_at(MaterialData m) {
-    vec4 base = m.base_color;
+    vec4 base = m.base_color * in_color;
 #ifdef HAS_BASE_COLOR_MAP
-    base *= texture(base_color_map, in_uv);
+    base *= texture(base_color_map, BASE_COLOR_UV);
 #endif
     float metallic = m.factors.x;
     float roughness = m.factors.y;
 #ifdef HAS_METALLIC_ROUGHNESS_MAP
-    vec4 mr = texture(metallic_roughness_map, in_uv);
+    vec4 mr = texture(metallic_roughness_map, METALLIC_ROUGHNESS_UV);
     roughness *= mr.g;
     metallic *= mr.b;
 #endif
     float occlusion = m.extra.z;
 #ifdef HAS_OCCLUSION_MAP
-    occlusion *= 1.0 + m.factors.w * (texture(occlusion_map, in_uv).r - 1.0);
+    occlusion *= 1.0 + m.factors.w * (texture(occlusion_map, OCCLUSION_UV).r - 1.0);
 #endif
     Surface s;
     s.alpha = base.a;
     s.emissive = m.emissive_f0.rgb;
 #ifdef HAS_EMISSIVE_MAP
-    s.emissive *= texture(emissive_map, in_uv).rgb;
+    s.emissive *= texture(emissive_map, EMISSIVE_UV).rgb;
 #endif
     vec3 n = normalize(in_normal);
 #ifdef DOUBLE_SIDED
+#ifdef MIRRORED
+    if (gl_FrontFacing) n = -n;
+#else
     if (!gl_FrontFacing) n = -n;
+#endif
 #endif
 #ifdef HAS_NORMAL_MAP
     // Tangent frame of the glTF specification: bitangent = cross(n, t) * w.
@@ -69,7 +105,7 @@ Surface surface_at(MaterialData m) {
     if (dot(t, t) > 1e-12) {
         t = normalize(t);
         vec3 b = cross(n, t) * (in_tangent.w < 0.0 ? -1.0 : 1.0);
-        vec3 tn = texture(normal_map, in_uv).xyz * 2.0 - 1.0;
+        vec3 tn = texture(normal_map, NORMAL_UV).xyz * 2.0 - 1.0;
         tn.xy *= m.factors.z;
         n = normalize(mat3(t, b, n) * tn);
     }
@@ -85,6 +121,16 @@ void main() {
     FacetSurface s = surface.shading;
 #ifdef ALPHA_MASK
     if (surface.alpha < m.extra.x) discard;
+    surface.alpha = 1.0;  // what passes the cutoff is opaque
+#endif
+#ifdef ALPHA_OPAQUE
+    surface.alpha = 1.0;  // glTF: OPAQUE ignores the alpha channel entirely
+#endif
+#if defined(UNLIT) && VIEW == VIEW_FINAL
+    // Points and lines have no surface to light: base colour (vertex colour included) and
+    // emission, as other glTF viewers draw them.
+    out_color = vec4(s.albedo + surface.emissive, surface.alpha);
+    return;
 #endif
     vec3 v = normalize(frame.camera_position.xyz - in_world);
     vec3 n = s.n;

@@ -42,7 +42,8 @@ void check_scene(const Scene& scene) {
     for (size_t i = 0; i < scene.primitives.size(); ++i) {
         const Primitive& p = scene.primitives[i];
         const std::string where = "primitive " + std::to_string(i);
-        FACET_FUZZ_EXPECT(p.index_count % 3 == 0, where + ": not a triangle list");
+        const uint32_t corners = p.topology == Topology::triangles ? 3 : p.topology == Topology::lines ? 2 : 1;
+        FACET_FUZZ_EXPECT(p.index_count % corners == 0, where + ": not a list of its topology");
         FACET_FUZZ_EXPECT(uint64_t(p.first_index) + p.index_count <= scene.indices.size(), where + ": indices out of range");
         FACET_FUZZ_EXPECT(uint64_t(p.vertex_offset) + p.vertex_count <= scene.vertices.size(),
                           where + ": vertices out of range");
@@ -55,7 +56,8 @@ void check_scene(const Scene& scene) {
     }
     for (size_t i = 0; i < scene.vertices.size(); ++i) {
         const Vertex& v = scene.vertices[i];
-        FACET_FUZZ_EXPECT(finite(v.position) && finite(v.normal) && finite(v.uv) && finite(v.tangent),
+        FACET_FUZZ_EXPECT(finite(v.position) && finite(v.normal) && finite(v.uv) && finite(v.tangent) &&
+                              finite(v.color) && finite(v.uv1),
                           "vertex " + std::to_string(i) + " is not finite");
     }
     for (const Mesh& mesh : scene.meshes)

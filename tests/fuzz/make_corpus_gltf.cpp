@@ -1,6 +1,8 @@
 // glTF and GLB seeds: one quad in every index and uv type, textures (data URI, buffer
-// view, file), cameras, lights, a node hierarchy, several scenes, strips and fans, sparse
-// accessors; then the malformed cases the loader must refuse with an error.
+// view, file), cameras, lights, a node hierarchy, several scenes, strips and fans, points
+// and lines, sparse accessors (on a view and on zeros), vertex colours and TEXCOORD_1,
+// quantised positions, a skin and morph targets; then the malformed cases the loader
+// must refuse with an error.
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -117,6 +119,52 @@ const std::string kScenes =
     R"("nodes":[{"mesh":0},{"mesh":1,"scale":[1,-1,1]},{"mesh":0,"children":[1]}],)"
     R"("scenes":[{"nodes":[0]},{"name":"second","nodes":[2]}],"scene":1)";
 
+const std::string kLinesAndPoints =
+    R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":0},{"attributes":{"POSITION":0},"mode":1},)"
+    R"({"attributes":{"POSITION":0},"mode":2},{"attributes":{"POSITION":0},"indices":5,"mode":3}]}],)" + kOneNode;
+
+// Views and accessors the seeds below add to the quad's (views from 9, accessors from 9):
+// 9 COLOR_0 VEC4 normalized UNSIGNED_BYTE, 10 JOINTS_0 UNSIGNED_BYTE, 11 WEIGHTS_0 FLOAT,
+// 12 inverse bind matrices, 13 a morph target's positions, 14 POSITION as SHORT,
+// 15 sparse POSITION on view 0, 16 sparse POSITION on zeros, 17 COLOR_0 VEC3 FLOAT,
+// 18 a sparse accessor whose index 3 is past its 2 elements, 19 a target of 3 elements.
+struct Extras {
+    ByteVector bin;
+    std::string views, accessors;
+};
+
+Extras make_extras(const Quad& q) {
+    Extras e{q.bin, "", ""};
+    auto view = [&](size_t offset, size_t length) {
+        e.views += ",{\"buffer\":0,\"byteOffset\":" + std::to_string(offset) + ",\"byteLength\":" + std::to_string(length) + "}";
+    };
+    view(append<uint8_t>(e.bin, {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 128, 255, 255, 255, 0}), 16);  // view 9
+    view(append<uint8_t>(e.bin, {0, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}), 16);                      // view 10
+    view(append<float>(e.bin, {1, 0, 0, 0, 0.5f, 0.5f, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}), 64);                  // view 11
+    view(append<float>(e.bin, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,  //
+                               1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1}),
+         128);                                                                                   // view 12
+    view(append<float>(e.bin, {0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 1}), 48);                         // view 13
+    view(append<int16_t>(e.bin, {-100, -100, 0, 0, 100, -100, 0, 0, 100, 100, 0, 0, -100, 100, 0, 0}), 32);  // view 14
+    view(append<uint8_t>(e.bin, {1, 3, 0, 0}), 4);                                                 // view 15
+    view(append<float>(e.bin, {0.5f, 0.5f, 0.5f, 2, 2, 2}), 24);                                   // view 16
+    view(append<float>(e.bin, {1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1}), 48);                          // view 17
+    const std::string sparse = R"("sparse":{"count":2,"indices":{"bufferView":15,"componentType":5121},"values":{"bufferView":16}})";
+    e.accessors =
+        R"(,{"bufferView":9,"componentType":5121,"count":4,"type":"VEC4","normalized":true})"
+        R"(,{"bufferView":10,"componentType":5121,"count":4,"type":"VEC4"})"
+        R"(,{"bufferView":11,"componentType":5126,"count":4,"type":"VEC4"})"
+        R"(,{"bufferView":12,"componentType":5126,"count":2,"type":"MAT4"})"
+        R"(,{"bufferView":13,"componentType":5126,"count":4,"type":"VEC3"})"
+        R"(,{"bufferView":14,"componentType":5122,"count":4,"type":"VEC3","normalized":true,"byteOffset":0})"
+        R"(,{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3",)" + sparse + "}"
+        R"(,{"componentType":5126,"count":4,"type":"VEC3",)" + sparse + "}"
+        R"(,{"bufferView":17,"componentType":5126,"count":4,"type":"VEC3"})"
+        R"(,{"bufferView":0,"componentType":5126,"count":2,"type":"VEC3",)" + sparse + "}"
+        R"(,{"bufferView":13,"componentType":5126,"count":3,"type":"VEC3"})";
+    return e;
+}
+
 std::string document(const std::string& buffer, const std::string& rest, const Quad& q,
                      const std::string& more_views = "", const std::string& more_accessors = "") {
     return R"({"asset":{"version":"2.0","generator":"facet fuzz seeds"},"buffers":[)" + buffer +
@@ -161,12 +209,49 @@ void make_gltf_corpus(const std::filesystem::path& dir) {
     write_seed(dir, "scenes.gltf", document(buffer, kScenes, q));
     write_seed(dir, "no_scene.gltf",
                document(buffer, R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":6}]}],"nodes":[{"mesh":0}])", q));
-    // Sparse accessors are valid glTF the loader does not support (an error).
-    write_seed(dir, "bad_sparse_unsupported.gltf",
-               document(buffer, R"("meshes":[{"primitives":[{"attributes":{"POSITION":9},"indices":4}]}],)" + kOneNode, q,
-                        "",
-                        R"(,{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","sparse":{"count":1,)"
-                        R"("indices":{"bufferView":5,"componentType":5121},"values":{"bufferView":1}}})"));
+    write_seed(dir, "lines_points.gltf", document(buffer, kLinesAndPoints, q));
+    {
+        const Extras e = make_extras(q);
+        const std::string ebuffer = data_buffer(e.bin);
+        auto seed = [&](const std::string& name, const std::string& rest) {
+            write_seed(dir, name, document(ebuffer, rest, q, e.views, e.accessors));
+        };
+        seed("colours_uv1.gltf",
+             R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"COLOR_0":9,"TEXCOORD_0":2,"TEXCOORD_1":7},)"
+             R"("indices":4,"material":0},{"attributes":{"POSITION":0,"COLOR_0":17,"TEXCOORD_1":8},"indices":4}]}],)"
+             R"("materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0,"texCoord":1}},)"
+             R"("emissiveTexture":{"index":0,"texCoord":0}}],"textures":[{"source":0}],"images":[)" + png_uri + "]," +
+                 kOneNode);
+        seed("sparse_quantised.gltf",
+             R"("meshes":[{"primitives":[{"attributes":{"POSITION":15},"indices":4},{"attributes":{"POSITION":16},"indices":4},)"
+             R"({"attributes":{"POSITION":14},"indices":4}]}],)"
+             R"("extensionsUsed":["KHR_mesh_quantization"],)" + kOneNode);
+        const std::string skinned =
+            R"("meshes":[{"weights":[0.5],"primitives":[{"attributes":{"POSITION":0,"NORMAL":1,"JOINTS_0":10,"WEIGHTS_0":11},)"
+            R"("indices":4,"targets":[{"POSITION":13}]}]}],)";
+        seed("skin_morph.gltf",
+             skinned + R"("skins":[{"joints":[1,2],"inverseBindMatrices":12}],)"
+                       R"("nodes":[{"mesh":0,"skin":0,"weights":[0.25]},{"children":[2]},)"
+                       R"({"translation":[0,1,0],"rotation":[0,0,0.7071068,0.7071068]},{"mesh":0,"scale":[-1,1,1]}],)"
+                       R"("scenes":[{"nodes":[0,1,3]}],"scene":0)");
+        seed("bad_skin_joint.gltf", skinned + R"("skins":[{"joints":[1,7]}],)"
+                                              R"("nodes":[{"mesh":0,"skin":0},{}],"scenes":[{"nodes":[0,1]}])");
+        seed("bad_skin_vertex_joint.gltf", skinned + R"("skins":[{"joints":[1]}],)"
+                                                     R"("nodes":[{"mesh":0,"skin":0},{}],"scenes":[{"nodes":[0,1]}])");
+        seed("bad_morph_count.gltf",
+             R"("meshes":[{"weights":[1],"primitives":[{"attributes":{"POSITION":0},"indices":4,"targets":[{"POSITION":19}]}]}],)" +
+                 kOneNode);
+        seed("bad_morph_weights.gltf",
+             R"("meshes":[{"weights":[1,1],"primitives":[{"attributes":{"POSITION":0},"indices":4,"targets":[{"POSITION":13}]}]}],)" +
+                 kOneNode);
+        seed("bad_sparse_index.gltf",
+             R"("meshes":[{"primitives":[{"attributes":{"POSITION":18},"indices":4}]}],)" + kOneNode);
+        seed("bad_texcoord_2.gltf",
+             R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":4,"material":0}]}],)"
+             R"("materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0,"texCoord":2}}}],)"
+             R"("textures":[{"source":0}],"images":[)" + png_uri + "]," + kOneNode);
+        seed("bad_scene_index.gltf", kTriangle.substr(0, kTriangle.size() - 1) + "7");
+    }
     // buffer.bin and texture.png lie beside every input (feed_gltf).
     write_seed(dir, "external.gltf",
                R"({"asset":{"version":"2.0"},"buffers":[{"uri":"buffer.bin","byteLength":44}],)"
@@ -229,8 +314,8 @@ void make_gltf_corpus(const std::filesystem::path& dir) {
                                 R"("materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}],)"
                                 R"("textures":[{"source":3}],)" + kOneNode,
                         q));
-    write_seed(dir, "bad_mode_lines.gltf",
-               document(buffer, R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":1}]}],)" + kOneNode, q));
+    write_seed(dir, "bad_mode_unknown.gltf",
+               document(buffer, R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":9}]}],)" + kOneNode, q));
     write_seed(dir, "bad_index_count.gltf",
                document(buffer, R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":9}]}],)" + kOneNode, q,
                         "", R"(,{"bufferView":4,"componentType":5123,"count":5,"type":"SCALAR"})"));

@@ -35,7 +35,10 @@ struct CameraView {
 CameraView orbit_camera(glm::vec3 target, float theta_deg, float phi_deg, float radius, float yfov);
 
 // Frames the bounds: looks at their centre from the +Z side, from the distance where
-// the box's front face fills the narrower field of view with a 10% margin.
+// the box's front face fills the narrower field of view with a 10% margin. A box that
+// +Z sees nearly edge-on (its projected area from +X, or from 45 degrees above, more
+// than twice that from +Z: a model lying flat in XZ or YZ) is seen from that direction
+// instead, at the distance where its bounding sphere fits with the same margin.
 CameraView frame_bounds(glm::vec3 bounds_min, glm::vec3 bounds_max, float yfov, float aspect);
 
 }  // namespace facet

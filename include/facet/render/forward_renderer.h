@@ -142,7 +142,7 @@ private:
     struct Slot {
         Buffer frame, lights, sky_disks;
     };
-    Result<const Pipeline*> material_pipeline(const GpuScene& scene, uint32_t material, View view,
+    Result<const Pipeline*> material_pipeline(const GpuScene& scene, uint32_t instance, View view,
                                               const Target& target, bool ibl, const FrameSettings& settings);
     Result<std::vector<const Pipeline*>> pipelines(const GpuScene& scene, View view, const Target& target,
                                                    bool ibl, const FrameSettings& settings);

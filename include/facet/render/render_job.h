@@ -35,6 +35,7 @@ struct RenderJob {
     uint32_t env_width = 1024;  // built-in environments
     uint32_t max_env_width = kDefaultMaxEnvironmentWidth;  // wider files are downsampled while read
     GltfLimits model_limits;    // memory budget of a glTF model (scene/gltf_loader.h)
+    int model_scene = -1;       // the glTF file's scene to draw (-1: its default scene)
     bool sanitize = false;
     IblSettings ibl;
     FrameSettings frame;  // camera: see below; lights: the scene's plus extra_lights

@@ -16,9 +16,10 @@ namespace facet {
 struct GltfLimits {
     // Bytes read from disk: the .gltf or .glb and every external buffer and image.
     uint64_t max_file_bytes = uint64_t(1) << 30;
-    // Vertices and triangle-list indices of the whole scene, each primitive counted
-    // once (48 and 4 bytes each: 960 MiB at these limits; indices stay far inside
-    // uint32). 2^24 vertices is 16.7 million; 3 x 2^24 indices, 16.7 million triangles.
+    // Vertices and list indices of the whole scene, each primitive counted once, plus
+    // the copies skinned or morphed (72 and 4 bytes each: 1.3 GiB at these limits;
+    // indices stay far inside uint32). 2^24 vertices is 16.7 million; 3 x 2^24
+    // indices, 16.7 million triangles.
     uint64_t max_vertices = uint64_t(1) << 24;
     uint64_t max_indices = uint64_t(3) << 24;
     // Textures with a side larger than this are box-downsampled to fit while they are
@@ -36,11 +37,16 @@ constexpr uint32_t kMaxTextureSide = 32768;
 constexpr uint64_t kMaxTexturePixels = uint64_t(1) << 28;
 constexpr uint64_t kMaxWholeDecodeBytes = uint64_t(256) << 20;
 
-// Loads the default scene (else scene 0, else every root node): the node hierarchy
-// flattened into instances, every mesh, material, sampler and image (decoded to
-// RGBA8), KHR_lights_punctual lights and cameras placed by their nodes. Missing
-// normals are generated, and missing tangents where a material has a normal texture.
+// Loads scene `scene` of the file (-1: its default scene, else scene 0, else every root
+// node): the node hierarchy flattened into instances, every mesh, material, sampler and
+// image (decoded to RGBA8), KHR_lights_punctual lights and cameras placed by their
+// nodes. Every primitive mode (strips, fans and loops become lists), accessor form
+// (sparse, every component type, normalized or not) and vertex attribute a still frame
+// needs (COLOR_0, TEXCOORD_0/1); skins posed by their joints' node transforms and
+// morph targets with their default weights (node.weights over mesh.weights) are applied
+// on the CPU, in a copy of the primitive per node. Missing normals are generated, and
+// missing tangents where a material has a normal texture.
 // Any malformed input gives Error{"<path>: <reason>"}; nothing is read out of bounds.
-Result<Scene> load_gltf(const std::string& path, const GltfLimits& limits = {});
+Result<Scene> load_gltf(const std::string& path, const GltfLimits& limits = {}, int scene = -1);
 
 }  // namespace facet

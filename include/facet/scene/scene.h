@@ -17,6 +17,8 @@ struct Vertex {
     glm::vec3 normal{0.0f, 0.0f, 1.0f};
     glm::vec2 uv{0.0f};
     glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f};  // xyz tangent, w = handedness (glTF)
+    glm::vec4 color{1.0f};  // COLOR_0 (linear RGBA, alpha 1 for VEC3), multiplied into the base colour
+    glm::vec2 uv1{0.0f};    // TEXCOORD_1, for textures whose texCoord is 1
 };
 
 // glTF sampler state, in Vulkan terms.
@@ -41,7 +43,7 @@ struct TextureImage {
 struct TextureRef {
     int32_t image = -1;    // index into Scene::images; -1 = none
     int32_t sampler = -1;  // index into Scene::samplers; -1 = default sampler
-    uint32_t uv_set = 0;   // only TEXCOORD_0 is loaded; a material using another set is an error
+    uint32_t uv_set = 0;   // 0: Vertex::uv (TEXCOORD_0), 1: Vertex::uv1 (TEXCOORD_1); higher sets are refused
     bool valid() const { return image >= 0; }
 };
 
@@ -74,13 +76,19 @@ struct Material {
     TextureRef emissive_texture;            // sRGB
 };
 
-// A contiguous range of Scene::indices (triangle list) using one material.
+// How a primitive's indices are drawn: glTF's strips, fans and loops are converted to
+// these lists when loaded. Points and lines are drawn unlit (base colour x vertex colour
+// + emissive), as other viewers draw them.
+enum class Topology { triangles, lines, points };
+
+// A contiguous range of Scene::indices (a list of `topology`) using one material.
 struct Primitive {
     uint32_t first_index = 0;
     uint32_t index_count = 0;
     uint32_t vertex_offset = 0;  // added to every index of the range
     uint32_t vertex_count = 0;
     uint32_t material = 0;       // index into Scene::materials
+    Topology topology = Topology::triangles;
     glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};  // object space
 };
 

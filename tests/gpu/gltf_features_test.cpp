@@ -1,0 +1,404 @@
+// The glTF core features drawn on lavapipe, each from a small file written here and
+// checked by pixels against values computed here: OPAQUE ignoring alpha, vertex colours,
+// a texture on TEXCOORD_1, a mirrored cube shaded and culled right, lines and points
+// drawn unlit, and a flat model framed by the default camera. Single-sample frames, so
+// that every covered pixel is exact; tolerances are stated per check.
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <facet/render/render_job.h>
+#include <facet/scene/gltf_loader.h>
+#include "support/gltf_files.h"
+#include "support/gpu_test.h"
+
+namespace facet {
+namespace {
+
+using namespace test;
+
+constexpr uint32_t kSize = 64;
+
+struct Pixel {
+    float r, g, b, a;
+};
+
+Pixel at(const std::vector<float>& rgba, uint32_t x, uint32_t y) {
+    const float* p = &rgba[(size_t(y) * kSize + x) * 4];
+    return {p[0], p[1], p[2], p[3]};
+}
+
+// A 2x2 metre quad at z = 0 facing +Z, with optional extra attributes.
+const std::vector<float> kQuad = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+const std::vector<uint16_t> kQuadIndices = {0, 1, 2, 0, 2, 3};
+
+std::string mesh_file(const std::string& attributes, int indices, const std::string& material, int mode = 4,
+                      const std::string& node = R"({"mesh": 0})") {
+    std::string primitive = R"({"attributes": {)" + attributes + R"(}, "material": 0, "mode": )" + std::to_string(mode);
+    if (indices >= 0) primitive += R"(, "indices": )" + std::to_string(indices);
+    return R"("meshes": [{"primitives": [)" + primitive + R"(}]}],
+  "materials": [)" + material + R"(],
+  "nodes": [)" + node + R"(], "scenes": [{"nodes": [0]}])";
+}
+
+class GltfFeaturesTest : public GpuTest {
+protected:
+    GltfTempDir dir{"gltf_features"};
+
+    RenderJob job(const std::string& env) {
+        RenderJob job;
+        job.env = env;
+        job.env_width = 64;
+        job.frame.width = kSize;
+        job.frame.height = kSize;
+        job.frame.samples = 1;
+        job.frame.skybox = false;
+        job.ibl.specular.sample_count = 64;
+        job.ibl.lut.size = 32;
+        job.ibl.lut.sample_count = 256;
+        job.orbit = std::array<float, 3>{0.0f, 0.0f, 3.0f};
+        job.target = glm::vec3(0.0f);
+        return job;
+    }
+    // Loads `path`, makes every material Lambert-only (metallic 0, no specular lobe: the
+    // white furnace then shows albedo exactly), and renders it.
+    RenderedImages render(const std::string& path, RenderJob job, bool lambert = true,
+                          std::unique_ptr<RenderSession>* keep = nullptr) {
+        Result<Scene> scene = load_gltf(path);
+        EXPECT_TRUE(scene.ok()) << (scene.ok() ? "" : scene.error().message);
+        if (!scene) return {};
+        if (lambert)
+            for (Material& m : scene->materials) {
+                m.metallic = 0.0f;
+                m.specular_factor = 0.0f;
+            }
+        auto session = RenderSession::create(ctx(), job, std::move(*scene));
+        EXPECT_TRUE(session) << (session ? "" : session.error().message);
+        if (!session) return {};
+        auto images = (*session)->render_frame();
+        EXPECT_TRUE(images) << (images ? "" : images.error().message);
+        if (keep) *keep = std::move(*session);
+        return images ? *images : RenderedImages{};
+    }
+};
+
+// glTF: "OPAQUE: the rendered output is fully opaque and any alpha value is ignored".
+TEST_F(GltfFeaturesTest, OpaqueMaterialWithAlphaPointThreeWritesAlphaOne) {
+    GltfBuilder b;
+    b.add(kQuad, kFloat, "VEC3", 4);
+    b.add(kQuadIndices, kUshort, "SCALAR", 6);
+    const std::string emissive = R"("emissiveFactor": [0.2, 0.4, 0.6], "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, )";
+    const RenderedImages opaque =
+        render(b.write(dir, "opaque", mesh_file(R"("POSITION": 0)", 1, "{" + emissive + "0.3]}}")), job("none"), false);
+    ASSERT_EQ(opaque.hdr.size(), kSize * kSize * 4);
+    const Pixel p = at(opaque.hdr, 32, 32);
+    EXPECT_EQ(p.a, 1.0f);
+    EXPECT_NEAR(p.r, 0.2f, 1e-5f);
+    EXPECT_NEAR(p.g, 0.4f, 1e-5f);
+    EXPECT_NEAR(p.b, 0.6f, 1e-5f);
+    EXPECT_EQ(at(opaque.hdr, 0, 0).a, 0.0f);  // the background stays transparent
+    // MASK: above the cutoff, opaque too; below it, nothing.
+    const RenderedImages kept = render(
+        b.write(dir, "mask", mesh_file(R"("POSITION": 0)", 1, R"({"alphaMode": "MASK", )" + emissive + "0.7]}}")),
+        job("none"), false);
+    ASSERT_EQ(kept.hdr.size(), kSize * kSize * 4);
+    EXPECT_EQ(at(kept.hdr, 32, 32).a, 1.0f);
+    const RenderedImages cut = render(
+        b.write(dir, "cut", mesh_file(R"("POSITION": 0)", 1, R"({"alphaMode": "MASK", )" + emissive + "0.3]}}")),
+        job("none"), false);
+    ASSERT_EQ(cut.hdr.size(), kSize * kSize * 4);
+    EXPECT_EQ(at(cut.hdr, 32, 32).a, 0.0f);
+}
+
+// Where the ray through pixel (x, y)'s centre meets the plane z = 0.
+glm::vec3 on_plane(const CameraView& camera, uint32_t x, uint32_t y) {
+    const glm::mat4 inverse = glm::inverse(camera.projection(1.0f) * camera.view());
+    const glm::vec2 ndc((x + 0.5f) / kSize * 2.0f - 1.0f, (y + 0.5f) / kSize * 2.0f - 1.0f);
+    glm::vec4 a = inverse * glm::vec4(ndc, 1.0f, 1.0f), b = inverse * glm::vec4(ndc, 0.5f, 1.0f);
+    const glm::vec3 p = glm::vec3(a) / a.w, q = glm::vec3(b) / b.w;
+    return p + (q - p) * (-p.z / (q.z - p.z));
+}
+
+// An affine colour field is interpolated exactly by any triangulation, so each covered
+// pixel must show base colour x the field at the point it sees (white furnace: radiance
+// 1 in, Lambert albedo out, within 2e-3 as WhiteFurnaceLambertSphereIsOneEverywhere).
+TEST_F(GltfFeaturesTest, VertexColouredQuad) {
+    auto field = [](glm::vec3 p) { return glm::vec3(0.5f + 0.5f * p.x, 0.5f + 0.5f * p.y, 0.25f); };
+    std::vector<float> colours;
+    for (size_t i = 0; i < 4; ++i) {
+        const glm::vec3 c = field({kQuad[3 * i], kQuad[3 * i + 1], 0.0f});
+        colours.insert(colours.end(), {c.x, c.y, c.z});
+    }
+    GltfBuilder b;
+    b.add(kQuad, kFloat, "VEC3", 4);
+    b.add(kQuadIndices, kUshort, "SCALAR", 6);
+    b.add(colours, kFloat, "VEC3", 4);
+    const glm::vec3 base(1.0f, 0.8f, 1.0f);
+    std::unique_ptr<RenderSession> session;
+    const RenderedImages images =
+        render(b.write(dir, "colours", mesh_file(R"("POSITION": 0, "COLOR_0": 2)", 1,
+                                                 R"({"pbrMetallicRoughness": {"baseColorFactor": [1, 0.8, 1, 1]}})")),
+               job("builtin:white"), true, &session);
+    ASSERT_EQ(images.hdr.size(), kSize * kSize * 4);
+    int checked = 0;
+    double worst = 0;
+    for (uint32_t y = 0; y < kSize; ++y)
+        for (uint32_t x = 0; x < kSize; ++x) {
+            const glm::vec3 p = on_plane(session->camera(), x, y);
+            if (std::abs(p.x) > 0.95f || std::abs(p.y) > 0.95f) continue;  // away from the edges
+            const glm::vec3 expected = base * field(p);
+            const Pixel px = at(images.hdr, x, y);
+            worst = std::max({worst, double(std::abs(px.r - expected.x)), double(std::abs(px.g - expected.y)),
+                              double(std::abs(px.b - expected.z))});
+            ++checked;
+        }
+    EXPECT_GT(checked, 500);
+    EXPECT_LT(worst, 2e-3);
+}
+
+// TEXCOORD_0 points at the texture's red half, TEXCOORD_1 at its green half: the material
+// says texCoord 1, so the quad is green (white furnace, nearest sampling).
+TEST_F(GltfFeaturesTest, TextureOnTheSecondUvSet) {
+    const std::string png = dir.file("halves.png");
+    const unsigned char texels[] = {255, 0, 0, 255, 0, 255, 0, 255};
+    auto out = OIIO::ImageOutput::create(png);
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(png, OIIO::ImageSpec(2, 1, 4, OIIO::TypeDesc::UINT8)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, texels));
+    out->close();
+    GltfBuilder b;
+    b.add(kQuad, kFloat, "VEC3", 4);
+    b.add(kQuadIndices, kUshort, "SCALAR", 6);
+    b.add(std::vector<float>(8, 0.25f), kFloat, "VEC2", 4);
+    b.add(std::vector<float>{0.75f, 0.5f, 0.75f, 0.5f, 0.75f, 0.5f, 0.75f, 0.5f}, kFloat, "VEC2", 4);
+    const std::string members =
+        mesh_file(R"("POSITION": 0, "TEXCOORD_0": 2, "TEXCOORD_1": 3)", 1,
+                  R"({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "texCoord": 1}}})") +
+        R"(, "textures": [{"source": 0, "sampler": 0}], "images": [{"uri": "halves.png"}],
+  "samplers": [{"magFilter": 9728, "minFilter": 9728}])";
+    const RenderedImages images = render(b.write(dir, "uv1", members), job("builtin:white"));
+    ASSERT_EQ(images.hdr.size(), kSize * kSize * 4);
+    const Pixel p = at(images.hdr, 32, 32);
+    EXPECT_NEAR(p.r, 0.0f, 2e-3f);
+    EXPECT_NEAR(p.g, 1.0f, 2e-3f);
+    EXPECT_NEAR(p.b, 0.0f, 2e-3f);
+}
+
+// A unit cube, single-sided, mirrored by its node (scale -1 in x), seen from 45 degrees
+// between +Z and +X and lit along the same diagonal. Each face is coloured by its
+// vertices: with the winding flipped the outer faces are drawn (not the inner ones the
+// camera would see through culled front faces), and with normals mirrored correctly both
+// visible faces receive the light at 45 degrees: radiance = albedo x E/pi x cos 45.
+TEST_F(GltfFeaturesTest, MirroredCubeShowsItsFrontFaces) {
+    std::vector<float> positions, colours;
+    std::vector<uint16_t> indices;
+    // Face normal axis, sign, and its colour (original +X blue, -X yellow, +Z green, -Z red, Y grey).
+    const struct {
+        int axis;
+        float sign;
+        glm::vec3 colour;
+    } faces[] = {{0, 1, {0, 0, 1}}, {0, -1, {1, 1, 0}}, {1, 1, {.5f, .5f, .5f}},
+                 {1, -1, {.5f, .5f, .5f}}, {2, 1, {0, 1, 0}}, {2, -1, {1, 0, 0}}};
+    for (const auto& f : faces) {
+        const int u = (f.axis + 1) % 3, v = (f.axis + 2) % 3;
+        const uint16_t first = uint16_t(positions.size() / 3);
+        const float corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+        for (const auto& c : corners) {
+            glm::vec3 p(0.0f);
+            p[f.axis] = f.sign;
+            p[u] = c[0];
+            p[v] = c[1];
+            positions.insert(positions.end(), {p.x, p.y, p.z});
+            colours.insert(colours.end(), {f.colour.x, f.colour.y, f.colour.z});
+        }
+        // (u, v, axis) is right-handed: CCW seen from +axis; reversed for the -axis face.
+        if (f.sign > 0) indices.insert(indices.end(), {first, uint16_t(first + 1), uint16_t(first + 2), first,
+                                                       uint16_t(first + 2), uint16_t(first + 3)});
+        else indices.insert(indices.end(), {first, uint16_t(first + 2), uint16_t(first + 1), first,
+                                            uint16_t(first + 3), uint16_t(first + 2)});
+    }
+    GltfBuilder b;
+    b.add(positions, kFloat, "VEC3", 24);
+    b.add(indices, kUshort, "SCALAR", 36);
+    b.add(colours, kFloat, "VEC3", 24);
+    const std::string members = mesh_file(R"("POSITION": 0, "COLOR_0": 2)", 1, "{}", 4,
+                                          R"({"mesh": 0, "scale": [-1, 1, 1]})");
+    RenderJob j = job("none");
+    j.orbit = std::array<float, 3>{45.0f, 0.0f, 6.0f};
+    Light sun;
+    sun.direction = glm::normalize(glm::vec3(-1.0f, 0.0f, -1.0f));
+    sun.intensity = float(M_PI);  // E/pi = 1
+    j.extra_lights = {sun};
+    const RenderedImages images = render(b.write(dir, "mirrored", members), j);
+    ASSERT_EQ(images.hdr.size(), kSize * kSize * 4);
+    const float c45 = std::sqrt(0.5f);
+    // Left of the centre the +Z face (green); right of it the face now at +X, the
+    // original -X face (yellow).
+    const Pixel left = at(images.hdr, 24, 32), right = at(images.hdr, 40, 32);
+    EXPECT_NEAR(left.r, 0.0f, 2e-3f);
+    EXPECT_NEAR(left.g, c45, 2e-3f);
+    EXPECT_NEAR(left.b, 0.0f, 2e-3f);
+    EXPECT_NEAR(right.r, c45, 2e-3f);
+    EXPECT_NEAR(right.g, c45, 2e-3f);
+    EXPECT_NEAR(right.b, 0.0f, 2e-3f);
+}
+
+// A normal map tilting the normal towards the bitangent, on a quad mirrored in x (and,
+// for comparison, on the same quad unmirrored): the bitangent is +Y either way (a mirror
+// in x leaves Y alone), so both must shade as Lambert with the tilted normal under a
+// light from above. Without the handedness flip the mirrored one would tilt towards -Y.
+TEST_F(GltfFeaturesTest, MirroredNormalMapKeepsItsBitangent) {
+    const std::string png = dir.file("tilt.png");
+    const unsigned char texel[] = {128, 191, 238, 255};
+    auto out = OIIO::ImageOutput::create(png);
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(png, OIIO::ImageSpec(1, 1, 4, OIIO::TypeDesc::UINT8)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, texel));
+    out->close();
+    const glm::vec3 tangent_space = glm::normalize(glm::vec3(texel[0], texel[1], texel[2]) / 255.0f * 2.0f - 1.0f);
+    const glm::vec3 n = glm::normalize(glm::vec3(0.0f, tangent_space.y, tangent_space.z));  // x: along the tangent
+    ASSERT_NEAR(tangent_space.x, 0.0f, 0.01f);
+    GltfBuilder b;
+    b.add(kQuad, kFloat, "VEC3", 4);
+    b.add(kQuadIndices, kUshort, "SCALAR", 6);
+    b.add(std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, kFloat, "VEC3", 4);                  // NORMAL
+    b.add(std::vector<float>{1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1}, kFloat, "VEC4", 4);     // TANGENT
+    b.add(std::vector<float>{0, 1, 1, 1, 1, 0, 0, 0}, kFloat, "VEC2", 4);
+    Light sun;
+    sun.direction = glm::normalize(glm::vec3(0.0f, -1.0f, -1.0f));  // from above and in front
+    sun.intensity = float(M_PI);
+    const float expected = std::max(0.0f, -glm::dot(n, sun.direction));
+    for (const char* node : {R"({"mesh": 0})", R"({"mesh": 0, "scale": [-1, 1, 1]})"}) {
+        const std::string members =
+            mesh_file(R"("POSITION": 0, "NORMAL": 2, "TANGENT": 3, "TEXCOORD_0": 4)", 1,
+                      R"({"normalTexture": {"index": 0}})", 4, node) +
+            R"(, "textures": [{"source": 0, "sampler": 0}], "images": [{"uri": "tilt.png"}],
+  "samplers": [{"magFilter": 9728, "minFilter": 9728}])";
+        RenderJob j = job("none");
+        j.extra_lights = {sun};
+        const RenderedImages images = render(b.write(dir, "tilt", members), j);
+        ASSERT_EQ(images.hdr.size(), kSize * kSize * 4);
+        const Pixel p = at(images.hdr, 32, 32);
+        EXPECT_NEAR(p.r, expected, 2e-3f) << node;
+        EXPECT_NEAR(p.g, expected, 2e-3f) << node;
+    }
+}
+
+// Lines (a loop around the quad's outline) and points (a 5 x 5 grid), unlit: base
+// colour x vertex colour + emissive, exactly.
+TEST_F(GltfFeaturesTest, LinesAndPointsDrawnUnlit) {
+    GltfBuilder b;
+    b.add(kQuad, kFloat, "VEC3", 4);
+    b.add(std::vector<float>{1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0}, kFloat, "VEC3", 4);
+    std::vector<float> grid;
+    for (int y = 0; y < 5; ++y)
+        for (int x = 0; x < 5; ++x) grid.insert(grid.end(), {-0.8f + 0.4f * x, -0.8f + 0.4f * y, 0.0f});
+    b.add(grid, kFloat, "VEC3", 25);
+    const std::string material = R"({"emissiveFactor": [0, 0, 0.5], "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1]}})";
+    const RenderedImages lines =
+        render(b.write(dir, "loop", mesh_file(R"("POSITION": 0, "COLOR_0": 1)", -1, material, 2)), job("none"), false);
+    ASSERT_EQ(lines.hdr.size(), kSize * kSize * 4);
+    const RenderedImages points =
+        render(b.write(dir, "points", mesh_file(R"("POSITION": 2)", -1, material, 0)), job("none"), false);
+    ASSERT_EQ(points.hdr.size(), kSize * kSize * 4);
+    int line_pixels = 0, point_pixels = 0;
+    for (uint32_t y = 0; y < kSize; ++y)
+        for (uint32_t x = 0; x < kSize; ++x) {
+            const Pixel l = at(lines.hdr, x, y), p = at(points.hdr, x, y);
+            if (l.a > 0.0f) {
+                ++line_pixels;
+                EXPECT_NEAR(l.r, 1.0f, 1e-5f);
+                EXPECT_NEAR(l.g, 0.0f, 1e-5f);
+                EXPECT_NEAR(l.b, 0.5f, 1e-5f);
+            }
+            if (p.a > 0.0f) {
+                ++point_pixels;
+                EXPECT_NEAR(p.r, 1.0f, 1e-5f);
+                EXPECT_NEAR(p.g, 1.0f, 1e-5f);
+                EXPECT_NEAR(p.b, 1.5f, 1e-5f);
+            }
+        }
+    // The outline spans about 2/2.49 of the 64-pixel frame on each of its four sides
+    // (45 degree field of view at 3 m), one pixel wide; the points are ~10 pixels apart.
+    EXPECT_GT(line_pixels, 4 * 45);
+    EXPECT_LT(line_pixels, 4 * 60);
+    EXPECT_EQ(point_pixels, 25);
+}
+
+// The quad's right edge (vertices 1 and 2, at x = 1) moved to x = 0 three ways: by a
+// sparse accessor, by a morph target with the mesh's default weight, by a skin joint
+// translated by -1 in x. Each image must cover exactly the rectangle [-1, 0] x [-1, 1]:
+// pixels whose centre sees a point more than 0.05 m inside it are covered, those more
+// than 0.05 m outside are not (the margin is about one pixel).
+TEST_F(GltfFeaturesTest, SparseMorphedAndSkinnedQuadsLandWhereComputed) {
+    GltfBuilder b;
+    b.add(kQuad, kFloat, "VEC3", 4);                                                       // 0
+    b.add(kQuadIndices, kUshort, "SCALAR", 6);                                             // 1
+    const int sparse_indices = b.view(std::vector<uint16_t>{1, 2});
+    const int sparse_values = b.view(std::vector<float>{0, -1, 0, 0, 1, 0});
+    b.accessor(0, kFloat, "VEC3", 4,
+               R"(, "sparse": {"count": 2, "indices": {"bufferView": )" + std::to_string(sparse_indices) +
+                   R"(, "componentType": 5123}, "values": {"bufferView": )" + std::to_string(sparse_values) + "}}");  // 2
+    b.add(std::vector<float>{0, 0, 0, -2, 0, 0, -2, 0, 0, 0, 0, 0}, kFloat, "VEC3", 4);   // 3: morph target
+    b.add(std::vector<uint8_t>{0, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0}, kUbyte, "VEC4", 4);  // 4: JOINTS_0
+    b.add(std::vector<float>{1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}, kFloat, "VEC4", 4);     // 5: WEIGHTS_0
+    const std::string material = R"("materials": [{"emissiveFactor": [1, 1, 1], "doubleSided": true}])";
+    const std::string scenes = R"("scenes": [{"nodes": [0]}])";
+    const std::string files[] = {
+        R"("meshes": [{"primitives": [{"attributes": {"POSITION": 2}, "indices": 1, "material": 0}]}],
+  "nodes": [{"mesh": 0}], )" + material + ", " + scenes,
+        R"("meshes": [{"weights": [0.5], "primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "material": 0,
+      "targets": [{"POSITION": 3}]}]}],
+  "nodes": [{"mesh": 0}], )" + material + ", " + scenes,
+        R"("meshes": [{"primitives": [{"attributes": {"POSITION": 0, "JOINTS_0": 4, "WEIGHTS_0": 5}, "indices": 1, "material": 0}]}],
+  "skins": [{"joints": [1, 2]}],
+  "nodes": [{"mesh": 0, "skin": 0, "children": [1, 2]}, {}, {"translation": [-1, 0, 0]}], )" + material + ", " + scenes};
+    const char* names[] = {"sparse", "morph", "skin"};
+    for (int f = 0; f < 3; ++f) {
+        std::unique_ptr<RenderSession> session;
+        const RenderedImages images = render(b.write(dir, names[f], files[f]), job("none"), false, &session);
+        ASSERT_EQ(images.hdr.size(), kSize * kSize * 4) << names[f];
+        int inside = 0, outside = 0, wrong = 0;
+        for (uint32_t y = 0; y < kSize; ++y)
+            for (uint32_t x = 0; x < kSize; ++x) {
+                const glm::vec3 p = on_plane(session->camera(), x, y);
+                const float distance_in = std::min({p.x + 1.0f, 0.0f - p.x, p.y + 1.0f, 1.0f - p.y});
+                const bool covered = at(images.hdr, x, y).a > 0.0f;
+                if (distance_in > 0.05f) {
+                    ++inside;
+                    wrong += !covered;
+                } else if (distance_in < -0.05f) {
+                    ++outside;
+                    wrong += covered;
+                }
+            }
+        EXPECT_GT(inside, 300) << names[f];
+        EXPECT_GT(outside, 1000) << names[f];
+        EXPECT_EQ(wrong, 0) << names[f];
+    }
+}
+
+// A quad lying in the XZ plane, framed by the default camera: it must cover a fair part
+// of the frame (seen edge-on from +Z it would cover nothing).
+TEST_F(GltfFeaturesTest, FlatModelInXzIsFramed) {
+    GltfBuilder b;
+    b.add(std::vector<float>{-1, 0, 1, 1, 0, 1, 1, 0, -1, -1, 0, -1}, kFloat, "VEC3", 4);  // CCW from +Y
+    b.add(kQuadIndices, kUshort, "SCALAR", 6);
+    RenderJob j = job("none");
+    j.orbit.reset();
+    j.target.reset();
+    const RenderedImages images = render(
+        b.write(dir, "flat", mesh_file(R"("POSITION": 0)", 1, R"({"emissiveFactor": [1, 1, 1]})")), j, false);
+    ASSERT_EQ(images.hdr.size(), kSize * kSize * 4);
+    int covered = 0;
+    for (uint32_t y = 0; y < kSize; ++y)
+        for (uint32_t x = 0; x < kSize; ++x) covered += at(images.hdr, x, y).a > 0.0f;
+    EXPECT_GT(covered, int(kSize * kSize / 10));
+}
+
+}  // namespace
+}  // namespace facet
