@@ -1,0 +1,70 @@
+#include "scene/gltf_extensions.h"
+
+#include <algorithm>
+
+#include "scene/gltf_decompress_draco.h"
+#include "scene/gltf_decompress_meshopt.h"
+#include "scene/gltf_errors.h"
+
+namespace facet::gltf_detail {
+
+const std::vector<std::string_view>& supported_extensions() {
+    // Add an extension here when the loader reads it (and say so in the README).
+    static const std::vector<std::string_view> names = [] {
+        std::vector<std::string_view> list = {
+            "EXT_meshopt_compression",          // gltf_decompress_meshopt.cpp
+            "KHR_draco_mesh_compression",       // gltf_decompress_draco.cpp
+            "KHR_lights_punctual",              // gltf_nodes.cpp
+            "KHR_materials_emissive_strength",  // gltf_materials.cpp
+        };
+        std::sort(list.begin(), list.end());
+        return list;
+    }();
+    return names;
+}
+
+bool is_supported_extension(std::string_view name) {
+    const auto& names = supported_extensions();
+    return std::binary_search(names.begin(), names.end(), name);
+}
+
+namespace {
+
+// Each name once, in the file's order (a list may repeat a name).
+std::vector<std::string> unsupported(const std::vector<std::string>& listed) {
+    std::vector<std::string> out;
+    for (const std::string& name : listed)
+        if (!is_supported_extension(name) && std::find(out.begin(), out.end(), name) == out.end())
+            out.push_back(name);
+    return out;
+}
+
+std::string join(const std::vector<std::string>& names) {
+    std::string text;
+    for (size_t i = 0; i < names.size(); ++i) text += (i == 0 ? "" : ", ") + names[i];
+    return text;
+}
+
+}  // namespace
+
+void check_required_extensions(const tinygltf::Model& model) {
+    const std::vector<std::string> missing = unsupported(model.extensionsRequired);
+    if (missing.size() == 1) fail("requires unsupported extension " + missing[0]);
+    if (missing.size() > 1)
+        fail("requires " + std::to_string(missing.size()) + " unsupported extensions: " + join(missing));
+}
+
+std::vector<std::string> ignored_extension_warnings(const tinygltf::Model& model) {
+    std::vector<std::string> warnings;
+    for (const std::string& name : unsupported(model.extensionsUsed))
+        warnings.push_back("extension " + name + " is used by the file but not implemented: ignored");
+    return warnings;
+}
+
+void apply_extensions(tinygltf::Model& model) {
+    check_required_extensions(model);
+    decompress_meshopt(model);
+    decompress_draco(model);
+}
+
+}  // namespace facet::gltf_detail
