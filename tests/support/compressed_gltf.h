@@ -102,8 +102,8 @@ struct MeshoptOptions {
     bool required = true;  // in extensionsRequired, else only used
 };
 
-// Writes `gltf_path` and, beside it, its .bin holding the compressed streams; the
-// fallback buffer has no uri, as gltfpack writes it.
+// Writes `gltf_path` (.gltf with its .bin beside it, or .glb) holding the compressed
+// streams; the fallback buffer has no uri, as gltfpack writes it.
 inline void write_meshopt_gltf(const std::filesystem::path& gltf_path, const TestGeometry& g,
                                const MeshoptOptions& options = {}) {
     const size_t n = g.vertex_count();
@@ -213,18 +213,20 @@ inline DracoStream encode_draco(const TestGeometry& g, const DracoOptions& optio
     return out;
 }
 
-// Writes `gltf_path` and its .bin holding the Draco stream of `g` (required; the
-// accessors have no bufferView, as the extension allows).
+// Writes `gltf_path` (.gltf with its .bin beside it, or .glb) holding the Draco stream of
+// `g` (required; the accessors have no bufferView, as the extension allows).
 inline void write_draco_gltf(const std::filesystem::path& gltf_path, const TestGeometry& g,
                              const DracoOptions& options = {}) {
     const DracoStream stream = encode_draco(g, options);
+    const bool glb = gltf_path.extension() == ".glb";  // else .gltf with its .bin beside it
     const std::string bin_name = gltf_path.stem().string() + ".bin";
-    write_bytes(gltf_path.parent_path() / bin_name, stream.bytes.data(), stream.bytes.size());
+    if (!glb) write_bytes(gltf_path.parent_path() / bin_name, stream.bytes.data(), stream.bytes.size());
     const std::string n = std::to_string(g.vertex_count());
     const std::string ext = "[\"KHR_draco_mesh_compression\"]";
     std::string json = "{\n  \"asset\": {\"version\": \"2.0\"},\n  \"extensionsUsed\": " + ext +
                        ",\n  \"extensionsRequired\": " + ext + ",\n";
-    json += "  \"buffers\": [{\"uri\": \"" + bin_name + "\", \"byteLength\": " + std::to_string(stream.bytes.size()) +
+    json += "  \"buffers\": [{" + (glb ? std::string() : "\"uri\": \"" + bin_name + "\", ") +
+            "\"byteLength\": " + std::to_string(stream.bytes.size()) +
             "}],\n  \"bufferViews\": [{\"buffer\": 0, \"byteLength\": " + std::to_string(stream.bytes.size()) + "}],\n";
     json += "  \"accessors\": [\n"
             "    {\"componentType\": 5126, \"count\": " + n + ", \"type\": \"VEC3\", " + min_max(g.positions, 3) + "},\n"
@@ -237,7 +239,8 @@ inline void write_draco_gltf(const std::filesystem::path& gltf_path, const TestG
                           ", \"NORMAL\": " + std::to_string(stream.normal_id) +
                           ", \"TEXCOORD_0\": " + std::to_string(stream.uv_id) + "}}}");
     json += "\n}\n";
-    write_bytes(gltf_path, json.data(), json.size());
+    if (glb) write_glb(gltf_path, json, stream.bytes);
+    else write_bytes(gltf_path, json.data(), json.size());
 }
 
 }  // namespace facet::test
