@@ -93,6 +93,34 @@ inline std::string mesh_and_node(const std::string& primitive_extra) {
   "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0)";
 }
 
+// The same mesh uncompressed (the reference the compressed files are compared with).
+inline void write_plain_gltf(const std::filesystem::path& gltf_path, const TestGeometry& g) {
+    std::vector<uint8_t> bin;
+    std::string views;
+    auto add = [&](const void* data, size_t bytes) {
+        const size_t at = bin.size();
+        bin.insert(bin.end(), static_cast<const uint8_t*>(data), static_cast<const uint8_t*>(data) + bytes);
+        views += std::string(views.empty() ? "" : ", ") + "{\"buffer\": 0, \"byteOffset\": " + std::to_string(at) +
+                 ", \"byteLength\": " + std::to_string(bytes) + "}";
+    };
+    add(g.positions.data(), g.positions.size() * 4);
+    add(g.normals.data(), g.normals.size() * 4);
+    add(g.uvs.data(), g.uvs.size() * 4);
+    add(g.indices.data(), g.indices.size() * 4);
+    const std::string bin_name = gltf_path.stem().string() + ".bin";
+    write_bytes(gltf_path.parent_path() / bin_name, bin.data(), bin.size());
+    const std::string n = std::to_string(g.vertex_count());
+    const std::string json =
+        "{\n  \"asset\": {\"version\": \"2.0\"},\n  \"buffers\": [{\"uri\": \"" + bin_name + "\", \"byteLength\": " +
+        std::to_string(bin.size()) + "}],\n  \"bufferViews\": [" + views + "],\n  \"accessors\": [\n" +
+        "    {\"bufferView\": 0, \"componentType\": 5126, \"count\": " + n + ", \"type\": \"VEC3\", " +
+        min_max(g.positions, 3) + "},\n    {\"bufferView\": 1, \"componentType\": 5126, \"count\": " + n +
+        ", \"type\": \"VEC3\"},\n    {\"bufferView\": 2, \"componentType\": 5126, \"count\": " + n +
+        ", \"type\": \"VEC2\"},\n    {\"bufferView\": 3, \"componentType\": 5125, \"count\": " +
+        std::to_string(g.indices.size()) + ", \"type\": \"SCALAR\"}],\n  " + mesh_and_node("") + "\n}\n";
+    write_bytes(gltf_path, json.data(), json.size());
+}
+
 struct MeshoptOptions {
     // How the index stream is coded: TRIANGLES (meshopt_encodeIndexBuffer) or INDICES
     // (meshopt_encodeIndexSequence).
