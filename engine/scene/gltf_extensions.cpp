@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "scene/gltf_decompress.h"
 #include "scene/gltf_decompress_draco.h"
 #include "scene/gltf_decompress_meshopt.h"
 #include "scene/gltf_errors.h"
@@ -13,6 +14,7 @@ const std::vector<std::string_view>& supported_extensions() {
     static const std::vector<std::string_view> names = [] {
         std::vector<std::string_view> list = {
             "EXT_meshopt_compression",          // gltf_decompress_meshopt.cpp
+            "EXT_texture_webp",                 // below; decoded by OpenImageIO (io/texture_decode.cpp)
             "KHR_draco_mesh_compression",       // gltf_decompress_draco.cpp
             "KHR_lights_punctual",              // gltf_nodes.cpp
             "KHR_materials_emissive_strength",  // gltf_materials.cpp
@@ -61,10 +63,24 @@ std::vector<std::string> ignored_extension_warnings(const tinygltf::Model& model
     return warnings;
 }
 
+void use_webp_sources(tinygltf::Model& model) {
+    for (size_t i = 0; i < model.textures.size(); ++i) {
+        tinygltf::Texture& texture = model.textures[i];
+        const std::string where = "texture " + std::to_string(i) + " (EXT_texture_webp)";
+        const tinygltf::Value* webp = extension_object(texture.extensions, "EXT_texture_webp", where);
+        if (!webp) continue;
+        const uint64_t source = field_uint(*webp, "source", where);
+        if (source >= model.images.size()) fail(where + ": source " + std::to_string(source) + " out of range");
+        texture.source = int(source);  // the WebP image replaces the fallback (PNG or JPEG), if any
+        texture.extensions.erase("EXT_texture_webp");
+    }
+}
+
 void apply_extensions(tinygltf::Model& model) {
     check_required_extensions(model);
     decompress_meshopt(model);
     decompress_draco(model);
+    use_webp_sources(model);
 }
 
 }  // namespace facet::gltf_detail

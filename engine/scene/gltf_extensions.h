@@ -22,9 +22,13 @@ void check_required_extensions(const tinygltf::Model& model);
 // without it), for Scene::warnings.
 std::vector<std::string> ignored_extension_warnings(const tinygltf::Model& model);
 
+// Textures with EXT_texture_webp take its source (a WebP image) in place of their own.
+void use_webp_sources(tinygltf::Model& model);
+
 // What parse() calls once tinygltf has read the model: the required check, then every
 // compressed bufferView and primitive (EXT_meshopt_compression, KHR_draco_mesh_compression)
-// decoded into plain buffers, so the rest of the loader reads an ordinary model.
+// decoded into plain buffers and WebP sources chosen, so the rest of the loader reads an
+// ordinary model.
 void apply_extensions(tinygltf::Model& model);
 
 }  // namespace facet::gltf_detail

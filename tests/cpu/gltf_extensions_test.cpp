@@ -13,7 +13,10 @@
 #include <string>
 #include <vector>
 
+#include <OpenImageIO/imageio.h>
+
 #include <facet/scene/gltf_loader.h>
+#include "io/image_header.h"
 #include "scene/gltf_decompress_json.h"
 #include "scene/gltf_extensions.h"
 #include "support/compressed_gltf.h"
@@ -52,8 +55,8 @@ Result<Scene> load_text(const TempDir& dir, const std::string& text) {
 TEST(GltfExtensions, RegistryIsSortedAndHoldsWhatTheLoaderReads) {
     const auto& names = supported_extensions();
     EXPECT_TRUE(std::is_sorted(names.begin(), names.end()));
-    for (const char* name : {"EXT_meshopt_compression", "KHR_draco_mesh_compression", "KHR_lights_punctual",
-                             "KHR_materials_emissive_strength"})
+    for (const char* name : {"EXT_meshopt_compression", "EXT_texture_webp", "KHR_draco_mesh_compression",
+                             "KHR_lights_punctual", "KHR_materials_emissive_strength"})
         EXPECT_TRUE(is_supported_extension(name)) << name;
     EXPECT_FALSE(is_supported_extension("KHR_materials_made_up"));
     EXPECT_FALSE(is_supported_extension(""));
@@ -92,6 +95,109 @@ TEST(GltfExtensions, NoListsNoWarnings) {
     const Result<Scene> scene = load_text(dir, triangle_gltf(""));
     ASSERT_TRUE(scene.ok()) << scene.error().message;
     EXPECT_TRUE(scene->warnings.empty());
+}
+
+// An RGBA8 PNG written by OpenImageIO.
+void write_image(const fs::path& path, int width, int height, const std::vector<uint8_t>& rgba) {
+    auto out = OIIO::ImageOutput::create(path.string());
+    ASSERT_TRUE(out) << OIIO::geterror();
+    OIIO::ImageSpec spec(width, height, 4, OIIO::TypeDesc::UINT8);
+    ASSERT_TRUE(out->open(path.string(), spec) && out->write_image(OIIO::TypeDesc::UINT8, rgba.data()) && out->close())
+        << out->geterror();
+}
+
+std::string textured_triangle(const std::string& texture) {
+    std::string text = triangle_gltf(R"(
+  "extensionsUsed": ["EXT_texture_webp"],
+  "images": [{"uri": "fallback.png"}, {"uri": "texture.webp"}],
+  "textures": [)" + texture + R"(],
+  "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],)");
+    const std::string from = R"({"attributes": {"POSITION": 0}})";
+    text.replace(text.find(from), from.size(), R"({"attributes": {"POSITION": 0}, "material": 0})");
+    return text;
+}
+
+// A 3x2 lossless WebP made once with libwebp 1.2.4 (WebPEncodeLosslessRGBA; OpenImageIO
+// 2.4's WebP writer mangles colours, so it cannot make one here) holding kWebpTexels.
+const uint8_t kWebp[84] = {
+    0x52, 0x49, 0x46, 0x46, 0x4c, 0x00, 0x00, 0x00, 0x57, 0x45, 0x42, 0x50, 0x56, 0x50, 0x38, 0x4c, 0x3f,
+    0x00, 0x00, 0x00, 0x2f, 0x02, 0x40, 0x00, 0x10, 0x2f, 0x40, 0x20, 0x69, 0x33, 0xd6, 0x61, 0x85, 0xdf,
+    0xfb, 0x3d, 0xc8, 0xa4, 0x6d, 0x4a, 0xcf, 0xf9, 0xd7, 0x33, 0x6b, 0x55, 0xd0, 0x80, 0x00, 0xe3, 0xf4,
+    0x10, 0x47, 0xff, 0x42, 0x86, 0x40, 0xd2, 0x66, 0xd5, 0x96, 0x6c, 0x3c, 0xf9, 0x03, 0x7e, 0x22, 0x6a,
+    0xde, 0xd6, 0xd2, 0x5e, 0x21, 0x20, 0x21, 0x53, 0xf2, 0xc8, 0x17, 0x11, 0xfd, 0x8f, 0x58, 0x00};
+// Straight (not premultiplied) RGBA, rows top first.
+const std::vector<uint8_t> kWebpTexels = {255, 0, 0, 255, 0, 255, 0, 128, 0, 0, 255, 255,
+                                          10, 20, 30, 255, 200, 150, 100, 64, 1, 2, 3, 255};
+
+TEST(GltfExtensions, WebpSourceReplacesTheFallback) {
+    TempDir dir;
+    test::write_bytes(dir.file("texture.webp"), kWebp, sizeof kWebp);
+    write_image(dir.file("fallback.png"), 3, 2, std::vector<uint8_t>(24, 99));
+    Result<Scene> scene = load_text(dir, textured_triangle(R"({"source": 0, "extensions": {"EXT_texture_webp": {"source": 1}}})"));
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    EXPECT_TRUE(scene->warnings.empty());
+    ASSERT_EQ(scene->materials.size(), 1u);
+    const int image = scene->materials[0].base_color_texture.image;
+    ASSERT_EQ(image, 1);
+    const TextureImage& texture = scene->images[size_t(image)];
+    ASSERT_EQ(texture.width, 3u);
+    ASSERT_EQ(texture.height, 2u);
+    ASSERT_EQ(texture.rgba.size(), kWebpTexels.size());
+    // Colour comes back through the reader's 8-bit premultiplication: within 255 / alpha
+    // codes of the straight value (exact where alpha is 255).
+    for (size_t i = 0; i < kWebpTexels.size(); ++i) {
+        const int alpha = kWebpTexels[i / 4 * 4 + 3];
+        const int tolerance = i % 4 == 3 ? 0 : (255 + alpha - 1) / alpha;
+        EXPECT_NEAR(int(texture.rgba[i]), int(kWebpTexels[i]), tolerance) << "byte " << i;
+    }
+}
+
+TEST(GltfExtensions, WebpHeadersGiveTheirSize) {
+    auto riff = [](const char* chunk, std::vector<uint8_t> data) {
+        std::vector<uint8_t> bytes = {'R', 'I', 'F', 'F', 0, 0, 0, 0, 'W', 'E', 'B', 'P'};
+        for (int i = 0; i < 4; ++i) bytes.push_back(uint8_t(chunk[i]));
+        bytes.insert(bytes.end(), {0, 0, 0, 0});
+        bytes.insert(bytes.end(), data.begin(), data.end());
+        bytes.resize(std::max<size_t>(bytes.size(), 40), 0);
+        return bytes;
+    };
+    // Lossless: 14-bit width - 1 and height - 1 after the 0x2f signature, then the alpha bit.
+    auto lossless = read_image_header(kWebp, sizeof kWebp);
+    ASSERT_TRUE(lossless);
+    EXPECT_EQ(lossless->format, "webp");
+    EXPECT_EQ(lossless->width, 3u);
+    EXPECT_EQ(lossless->height, 2u);
+    EXPECT_EQ(lossless->channels, 4u);
+    // Lossy key frame: 3 tag bytes, 9d 01 2a, 14-bit width and height (640 x 480).
+    const std::vector<uint8_t> vp8 = riff("VP8 ", {0, 0, 0, 0x9d, 0x01, 0x2a, 0x80, 0x02, 0xe0, 0x01});
+    auto lossy = read_image_header(vp8.data(), vp8.size());
+    ASSERT_TRUE(lossy);
+    EXPECT_EQ(lossy->width, 640u);
+    EXPECT_EQ(lossy->height, 480u);
+    EXPECT_EQ(lossy->channels, 3u);
+    // Extended: flags (0x10 alpha), 3 reserved bytes, 24-bit width - 1 and height - 1 (5000 x 70000 - 1).
+    const std::vector<uint8_t> vp8x = riff("VP8X", {0x10, 0, 0, 0, 0x87, 0x13, 0x00, 0x6f, 0x11, 0x01});
+    auto extended = read_image_header(vp8x.data(), vp8x.size());
+    ASSERT_TRUE(extended);
+    EXPECT_EQ(extended->width, 5000u);
+    EXPECT_EQ(extended->height, 70000u);
+    EXPECT_EQ(extended->channels, 4u);
+    // A lossy frame without its start code, an unknown chunk and a cut file: nothing.
+    const std::vector<uint8_t> broken = riff("VP8 ", {0, 0, 0, 0x9d, 0x01, 0x2b});
+    EXPECT_FALSE(read_image_header(broken.data(), broken.size()));
+    const std::vector<uint8_t> unknown = riff("ABCD", {0});
+    EXPECT_FALSE(read_image_header(unknown.data(), unknown.size()));
+    EXPECT_FALSE(read_image_header(kWebp, 20));
+}
+
+TEST(GltfExtensions, WebpSourceOutOfRangeIsAnError) {
+    TempDir dir;
+    test::write_bytes(dir.file("texture.webp"), kWebp, sizeof kWebp);
+    write_image(dir.file("fallback.png"), 1, 1, {1, 2, 3, 255});
+    Result<Scene> scene = load_text(dir, textured_triangle(R"({"source": 0, "extensions": {"EXT_texture_webp": {"source": 4}}})"));
+    ASSERT_FALSE(scene.ok());
+    EXPECT_NE(scene.error().message.find("texture 0 (EXT_texture_webp): source 4 out of range"), std::string::npos)
+        << scene.error().message;
 }
 
 std::vector<uint8_t> bytes_of(const std::string& text) { return {text.begin(), text.end()}; }
