@@ -172,14 +172,23 @@ void draco_indices(std::string_view s, const std::vector<Member>& top, std::vect
     });
 }
 
-// The JSON with both rewrites applied, or empty if neither applies.
+constexpr std::string_view kWebpUri = "\"data:image/webp;base64,";
+
+void webp_data_uris(std::string_view s, std::vector<Edit>& edits) {
+    for (size_t at = s.find(kWebpUri); at != npos; at = s.find(kWebpUri, at + 1))
+        edits.push_back({at, kWebpUri.size(), "\"data:application/octet-stream;base64,"});
+}
+
+// The JSON with the rewrites applied, or empty if none applies.
 std::string rewrite(std::string_view s) {
     std::vector<Member> top;
     const bool meshopt = s.find("\"fallback\"") != npos, draco = s.find("KHR_draco_mesh_compression") != npos;
-    if ((!meshopt && !draco) || !members(s, 0, top)) return {};
+    const bool webp = s.find(kWebpUri) != npos;
+    if ((!meshopt && !draco && !webp) || !members(s, 0, top)) return {};
     std::vector<Edit> edits;
     if (meshopt) fallback_buffers(s, top, edits);
     if (draco) draco_indices(s, top, edits);
+    if (webp) webp_data_uris(s, edits);
     if (edits.empty()) return {};
     std::sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) { return a.at < b.at; });
     std::string out;

@@ -1,6 +1,6 @@
 #pragma once
-// Internal to the glTF loader: the two things compressed files do that tinygltf 2.7
-// refuses, rewritten in the JSON before it parses the file.
+// Internal to the glTF loader: what compressed files (and WebP data uris) do that
+// tinygltf 2.7 refuses, rewritten in the JSON before it parses the file.
 //
 // - EXT_meshopt_compression's fallback buffer has a byteLength and usually no uri (its
 //   bytes exist only compressed). tinygltf refuses a buffer without uri in a .gltf, and
@@ -11,6 +11,9 @@
 //   indices accessor without one ("accessor[N] invalid bufferView"). Such an accessor
 //   is given the primitive's Draco bufferView; the decoder points it at the decoded
 //   indices before anything reads it.
+// - EXT_texture_webp's images may be data uris of type image/webp, which tinygltf does
+//   not know (it takes them for file names): they are given type
+//   application/octet-stream, whose bytes it hands to the loader as any image's.
 #include <cstdint>
 #include <vector>
 

@@ -117,17 +117,8 @@ std::string textured_triangle(const std::string& texture) {
     return text;
 }
 
-// A 3x2 lossless WebP made once with libwebp 1.2.4 (WebPEncodeLosslessRGBA; OpenImageIO
-// 2.4's WebP writer mangles colours, so it cannot make one here) holding kWebpTexels.
-const uint8_t kWebp[84] = {
-    0x52, 0x49, 0x46, 0x46, 0x4c, 0x00, 0x00, 0x00, 0x57, 0x45, 0x42, 0x50, 0x56, 0x50, 0x38, 0x4c, 0x3f,
-    0x00, 0x00, 0x00, 0x2f, 0x02, 0x40, 0x00, 0x10, 0x2f, 0x40, 0x20, 0x69, 0x33, 0xd6, 0x61, 0x85, 0xdf,
-    0xfb, 0x3d, 0xc8, 0xa4, 0x6d, 0x4a, 0xcf, 0xf9, 0xd7, 0x33, 0x6b, 0x55, 0xd0, 0x80, 0x00, 0xe3, 0xf4,
-    0x10, 0x47, 0xff, 0x42, 0x86, 0x40, 0xd2, 0x66, 0xd5, 0x96, 0x6c, 0x3c, 0xf9, 0x03, 0x7e, 0x22, 0x6a,
-    0xde, 0xd6, 0xd2, 0x5e, 0x21, 0x20, 0x21, 0x53, 0xf2, 0xc8, 0x17, 0x11, 0xfd, 0x8f, 0x58, 0x00};
-// Straight (not premultiplied) RGBA, rows top first.
-const std::vector<uint8_t> kWebpTexels = {255, 0, 0, 255, 0, 255, 0, 128, 0, 0, 255, 255,
-                                          10, 20, 30, 255, 200, 150, 100, 64, 1, 2, 3, 255};
+using test::kWebp;
+using test::kWebpTexels;
 
 TEST(GltfExtensions, WebpSourceReplacesTheFallback) {
     TempDir dir;
@@ -223,6 +214,14 @@ TEST(GltfCompressedJson, DracoIndicesAccessorGetsTheDracoView) {
     EXPECT_EQ(text_of(out), R"({"accessors": [{"count": 3}, {"bufferView": 0, "count": 3}, {"bufferView": 7, "count": 3}],
   "meshes": [{"primitives": [{"indices": 2, "attributes": {"POSITION": 0},
      "extensions": {"KHR_draco_mesh_compression": {"bufferView": 7, "attributes": {"POSITION": 0}}}}]}]})");
+}
+
+TEST(GltfCompressedJson, WebpDataUriBecomesOctetStream) {
+    const std::string json = R"({"images": [{"uri": "data:image/webp;base64,UklG"}, {"uri": "data:image/png;base64,iVBO"}]})";
+    std::vector<uint8_t> out;
+    ASSERT_TRUE(prepare_compressed_json(bytes_of(json), false, out));
+    EXPECT_EQ(text_of(out),
+              R"({"images": [{"uri": "data:application/octet-stream;base64,UklG"}, {"uri": "data:image/png;base64,iVBO"}]})");
 }
 
 TEST(GltfCompressedJson, LeavesOtherAndMalformedFilesAlone) {

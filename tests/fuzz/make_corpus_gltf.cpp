@@ -345,6 +345,24 @@ void make_compressed_gltf_corpus(const fs::path& dir) {
         text.replace(text.find("%LISTS%"), 7, lists);
         return text;
     };
+    const std::string webp_uri = "data:image/webp;base64," + base64(ByteVector(test::kWebp, test::kWebp + sizeof test::kWebp));
+    const std::string webp_texture =
+        R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0}]}],)"
+        R"("materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}],)"
+        R"("images":[{"uri":")" + webp_uri + R"("}],)";
+    auto with_texture = [&](const std::string& texture, const std::string& image_uri) {
+        std::string text = with_lists(R"("extensionsUsed":["EXT_texture_webp"],"extensionsRequired":["EXT_texture_webp"],)");
+        const std::string meshes = R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)";
+        std::string textured = webp_texture;
+        textured.replace(textured.find(webp_uri), webp_uri.size(), image_uri);
+        text.replace(text.find(meshes), meshes.size(), textured + R"("textures":[)" + texture + "],");
+        return text;
+    };
+    write_seed(dir, "webp_texture.gltf", with_texture(R"({"extensions":{"EXT_texture_webp":{"source":0}}})", webp_uri));
+    write_seed(dir, "bad_webp_source.gltf", with_texture(R"({"extensions":{"EXT_texture_webp":{"source":3}}})", webp_uri));
+    write_seed(dir, "bad_webp_bytes.gltf",
+               with_texture(R"({"extensions":{"EXT_texture_webp":{"source":0}}})",
+                            "data:image/webp;base64," + base64(ByteVector(test::kWebp, test::kWebp + 40))));
     write_seed(dir, "extensions_used_unknown.gltf",
                with_lists(R"("extensionsUsed":["KHR_materials_made_up","KHR_lights_punctual"],)"));
     write_seed(dir, "bad_extensions_required_two.gltf",

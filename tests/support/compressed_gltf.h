@@ -1,6 +1,6 @@
 #pragma once
 // Writes glTF files whose mesh is compressed with EXT_meshopt_compression or
-// KHR_draco_mesh_compression, from geometry the caller makes, with the libraries' own
+// KHR_draco_mesh_compression (and holds a WebP for EXT_texture_webp), from geometry the caller makes, with the libraries' own
 // encoders: the compression tests and the load-cost measurement (compressed_mesh_tool).
 // Header-only; link meshoptimizer::meshoptimizer and draco::draco.
 #include <meshoptimizer.h>
@@ -270,5 +270,18 @@ inline void write_draco_gltf(const std::filesystem::path& gltf_path, const TestG
     if (glb) write_glb(gltf_path, json, stream.bytes);
     else write_bytes(gltf_path, json.data(), json.size());
 }
+
+// EXT_texture_webp's test image (the extension and fuzz tests).
+// A 3x2 lossless WebP made once with libwebp 1.2.4 (WebPEncodeLosslessRGBA; OpenImageIO
+// 2.4's WebP writer mangles colours, so it cannot make one here) holding kWebpTexels.
+inline const uint8_t kWebp[84] = {
+    0x52, 0x49, 0x46, 0x46, 0x4c, 0x00, 0x00, 0x00, 0x57, 0x45, 0x42, 0x50, 0x56, 0x50, 0x38, 0x4c, 0x3f,
+    0x00, 0x00, 0x00, 0x2f, 0x02, 0x40, 0x00, 0x10, 0x2f, 0x40, 0x20, 0x69, 0x33, 0xd6, 0x61, 0x85, 0xdf,
+    0xfb, 0x3d, 0xc8, 0xa4, 0x6d, 0x4a, 0xcf, 0xf9, 0xd7, 0x33, 0x6b, 0x55, 0xd0, 0x80, 0x00, 0xe3, 0xf4,
+    0x10, 0x47, 0xff, 0x42, 0x86, 0x40, 0xd2, 0x66, 0xd5, 0x96, 0x6c, 0x3c, 0xf9, 0x03, 0x7e, 0x22, 0x6a,
+    0xde, 0xd6, 0xd2, 0x5e, 0x21, 0x20, 0x21, 0x53, 0xf2, 0xc8, 0x17, 0x11, 0xfd, 0x8f, 0x58, 0x00};
+// Straight (not premultiplied) RGBA, rows top first.
+inline const std::vector<uint8_t> kWebpTexels = {255, 0, 0, 255, 0, 255, 0, 128, 0, 0, 255, 255,
+                                          10, 20, 30, 255, 200, 150, 100, 64, 1, 2, 3, 255};
 
 }  // namespace facet::test
