@@ -1,5 +1,7 @@
 #include "scene/gltf_extensions.h"
 
+#include <facet/scene/gltf_loader.h>
+
 #include <algorithm>
 
 #include "scene/gltf_decompress.h"
@@ -84,3 +86,12 @@ void apply_extensions(tinygltf::Model& model) {
 }
 
 }  // namespace facet::gltf_detail
+
+namespace facet {
+
+std::vector<std::string> gltf_supported_extensions() {
+    const auto& names = gltf_detail::supported_extensions();
+    return {names.begin(), names.end()};
+}
+
+}  // namespace facet

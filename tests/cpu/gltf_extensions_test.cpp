@@ -58,6 +58,7 @@ TEST(GltfExtensions, RegistryIsSortedAndHoldsWhatTheLoaderReads) {
     for (const char* name : {"EXT_meshopt_compression", "EXT_texture_webp", "KHR_draco_mesh_compression",
                              "KHR_lights_punctual", "KHR_materials_emissive_strength"})
         EXPECT_TRUE(is_supported_extension(name)) << name;
+    EXPECT_EQ(gltf_supported_extensions(), std::vector<std::string>(names.begin(), names.end()));
     EXPECT_FALSE(is_supported_extension("KHR_materials_made_up"));
     EXPECT_FALSE(is_supported_extension(""));
 }
