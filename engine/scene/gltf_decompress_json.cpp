@@ -134,9 +134,14 @@ void fallback_buffers(std::string_view s, const std::vector<Member>& top, std::v
         std::vector<Member> buffer;
         if (!members(s, at, buffer)) return false;
         const Member* length = find(buffer, "byteLength");
-        if (length && !find(buffer, "uri") && is_fallback(s, buffer))
-            edits.push_back({length->value, length->end - length->value,
-                             "1, \"uri\": \"data:application/octet-stream;base64,AA==\""});
+        if (!length || !is_fallback(s, buffer)) return true;
+        const std::string one_byte = "\"data:application/octet-stream;base64,AA==\"";
+        if (const Member* uri = find(buffer, "uri")) {  // a fallback file (gltfpack -cf): not read either
+            edits.push_back({length->value, length->end - length->value, "1"});
+            edits.push_back({uri->value, uri->end - uri->value, one_byte});
+        } else {
+            edits.push_back({length->value, length->end - length->value, "1, \"uri\": " + one_byte});
+        }
         return true;
     });
 }

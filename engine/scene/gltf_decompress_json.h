@@ -6,7 +6,7 @@
 //   bytes exist only compressed). tinygltf refuses a buffer without uri in a .gltf, and
 //   in a .glb copies the BIN chunk for it (or refuses when byteLength is larger). Facet
 //   never reads it (each view on it is decoded from the compressed buffer), so it is
-//   given a 1-byte data uri.
+//   given a 1-byte data uri (in place of its file too, when it has one).
 // - KHR_draco_mesh_compression's accessors need no bufferView, but tinygltf refuses an
 //   indices accessor without one ("accessor[N] invalid bufferView"). Such an accessor
 //   is given the primitive's Draco bufferView; the decoder points it at the decoded

@@ -115,6 +115,16 @@ TEST(GltfMeshopt, IndexSequenceAndOnlyUsed) {
     expect_exact(load_ok(dir.file("grid.gltf")), g);
 }
 
+TEST(GltfMeshopt, FallbackFileIsNeverRead) {
+    // gltfpack -cf names a fallback file: Facet decodes instead, so a missing one is fine.
+    TempDir dir;
+    const TestGeometry g = test::wavy_grid(6, 5);
+    test::write_meshopt_gltf(dir.file("grid.gltf"), g);
+    write_text(dir.file("grid.gltf"), replaced(read_text(dir.file("grid.gltf")), "\"extensions\": {\"EXT_meshopt_compression\": {\"fallback\"",
+                                               "\"uri\": \"absent.fallback.bin\", \"extensions\": {\"EXT_meshopt_compression\": {\"fallback\""));
+    expect_exact(load_ok(dir.file("grid.gltf")), g);
+}
+
 TEST(GltfMeshopt, ExponentialFilterWithinItsMantissa) {
     TempDir dir;
     const TestGeometry g = test::wavy_grid(16, 16);

@@ -206,6 +206,15 @@ TEST(GltfCompressedJson, FallbackBufferGetsAOneByteUri) {
         {"byteLength": 5, "extensions": {"EXT_meshopt_compression": {"fallback": false}}}]})");
 }
 
+TEST(GltfCompressedJson, FallbackFileIsNotRead) {
+    const std::string json = R"({"buffers": [{"byteLength": 4000, "uri": "m.fallback.bin",
+        "extensions": {"EXT_meshopt_compression": {"fallback": true}}}]})";
+    std::vector<uint8_t> out;
+    ASSERT_TRUE(prepare_compressed_json(bytes_of(json), false, out));
+    EXPECT_EQ(text_of(out), R"({"buffers": [{"byteLength": 1, "uri": "data:application/octet-stream;base64,AA==",
+        "extensions": {"EXT_meshopt_compression": {"fallback": true}}}]})");
+}
+
 TEST(GltfCompressedJson, DracoIndicesAccessorGetsTheDracoView) {
     const std::string json = R"({"accessors": [{"count": 3}, {"bufferView": 0, "count": 3}, {"count": 3}],
   "meshes": [{"primitives": [{"indices": 2, "attributes": {"POSITION": 0},
