@@ -94,6 +94,9 @@ std::string describe(const Options& o, const RenderSession& session, const Rende
         .value("reason", shading.reason)
         .end_object();
     j.value("lights", uint32_t(f.lights.size()));
+    j.begin_array("warnings");  // what the model's loader met but does not draw (Scene::warnings)
+    for (const std::string& warning : session.scene().warnings) j.value({}, warning);
+    j.end_array();
     if (o.reference)
         j.begin_object("reference").value("samples_per_pixel", stats.samples).value("noise", stats.noise)
             .value("noise_target", o.reference_settings.noise_target).value("converged", stats.converged).end_object();
@@ -128,6 +131,7 @@ int render(const Options& o) {
         check_interrupt();
     });
     if (!session) throw std::runtime_error(session.error().message);
+    for (const std::string& warning : (*session)->scene().warnings) log("warning: " + warning);
     log("rendering " + std::to_string(o.job.frame.width) + "x" + std::to_string(o.job.frame.height) + " on " +
         context.device_name());
     ReferenceStats stats;

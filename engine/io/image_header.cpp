@@ -64,12 +64,46 @@ std::optional<ImageHeader> jpeg_header(const uint8_t* bytes, size_t size) {
     return std::nullopt;
 }
 
+uint32_t le16(const uint8_t* p) { return uint32_t(p[0]) | uint32_t(p[1]) << 8; }
+uint32_t le24(const uint8_t* p) { return le16(p) | uint32_t(p[2]) << 16; }
+
+// RIFF "WEBP" with its first chunk: VP8 (lossy), VP8L (lossless) or VP8X (extended).
+std::optional<ImageHeader> webp_header(const uint8_t* bytes, size_t size) {
+    if (size < 30) return std::nullopt;
+    ImageHeader h;
+    h.format = "webp";
+    h.row_by_row = false;  // libwebp decodes the whole image
+    const uint8_t* chunk = bytes + 12;
+    const uint8_t* data = bytes + 20;
+    if (std::memcmp(chunk, "VP8 ", 4) == 0) {
+        if (data[3] != 0x9D || data[4] != 0x01 || data[5] != 0x2A) return std::nullopt;  // key frame start code
+        h.width = le16(data + 6) & 0x3FFF;
+        h.height = le16(data + 8) & 0x3FFF;
+        h.channels = 3;
+    } else if (std::memcmp(chunk, "VP8L", 4) == 0) {
+        if (data[0] != 0x2F) return std::nullopt;
+        const uint32_t bits = le16(data + 1) | le16(data + 3) << 16;
+        h.width = (bits & 0x3FFF) + 1;
+        h.height = ((bits >> 14) & 0x3FFF) + 1;
+        h.channels = (bits >> 28) & 1 ? 4 : 3;
+    } else if (std::memcmp(chunk, "VP8X", 4) == 0) {
+        h.width = le24(data + 4) + 1;
+        h.height = le24(data + 7) + 1;
+        h.channels = data[0] & 0x10 ? 4 : 3;
+    } else {
+        return std::nullopt;
+    }
+    return h;
+}
+
 }  // namespace
 
 std::optional<ImageHeader> read_image_header(const uint8_t* bytes, size_t size) {
     static const uint8_t png_signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
     if (size >= 8 && std::memcmp(bytes, png_signature, 8) == 0) return png_header(bytes, size);
     if (size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF) return jpeg_header(bytes, size);
+    if (size >= 12 && std::memcmp(bytes, "RIFF", 4) == 0 && std::memcmp(bytes + 8, "WEBP", 4) == 0)
+        return webp_header(bytes, size);
     return std::nullopt;
 }
 

@@ -28,7 +28,8 @@ Result<Rgba8Image> decode_texture_rows(const uint8_t* bytes, size_t size, const 
     // OpenImageIO 2.4's plugins take the proxy from the configuration when given one.
     OIIO::Filesystem::IOProxy* proxy_pointer = &proxy;
     config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy_pointer);
-    auto in = OIIO::ImageInput::open(header.format == "png" ? "texture.png" : "texture.jpg", &config, &proxy);
+    const char* name = header.format == "png" ? "texture.png" : header.format == "webp" ? "texture.webp" : "texture.jpg";
+    auto in = OIIO::ImageInput::open(name, &config, &proxy);
     if (!in) return Error{"could not be decoded: " + OIIO::geterror()};
     const OIIO::ImageSpec& spec = in->spec();
     if (uint32_t(spec.width) != header.width || uint32_t(spec.height) != header.height || spec.nchannels < 1 ||
@@ -36,6 +37,7 @@ Result<Rgba8Image> decode_texture_rows(const uint8_t* bytes, size_t size, const 
         return Error{"could not be decoded: the decoder disagrees with the header about its size or channels"};
     const uint32_t src_w = header.width, src_h = header.height, channels = uint32_t(spec.nchannels);
     const bool has_alpha = channels == 2 || channels == 4;
+    const bool premultiplied = has_alpha && header.format == "webp";
 
     // Source values are 8 or 16 bit: a table per code turns them into linear light.
     const uint32_t codes = header.bytes_per_channel == 2 ? 65536 : 256;
@@ -69,9 +71,13 @@ Result<Rgba8Image> decode_texture_rows(const uint8_t* bytes, size_t size, const 
                                 raw.data()))
             return Error{"could not be decoded: " + in->geterror()};
         for (uint32_t y = y0; y < y1; ++y) {
-            const float* r = &raw[size_t(y - y0) * src_w * channels];
+            float* r = &raw[size_t(y - y0) * src_w * channels];
             for (uint32_t x = 0; x < src_w; ++x) {
-                const float* t = r + size_t(x) * channels;
+                float* t = r + size_t(x) * channels;
+                // OpenImageIO 2.4's WebP reader premultiplies colour by alpha whatever
+                // oiio:UnassociatedAlpha says; glTF wants it straight.
+                if (premultiplied && t[channels - 1] > 0.0f)
+                    for (uint32_t c = 0; c + 1 < channels; ++c) t[c] = std::min(1.0f, t[c] / t[channels - 1]);
                 auto code = [&](float v) { return to_linear[std::clamp(uint32_t(std::lround(v * (codes - 1))), 0u, codes - 1)]; };
                 const float grey = code(t[0]);
                 float* o = &rgba[size_t(x) * 4];

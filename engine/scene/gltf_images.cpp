@@ -51,7 +51,8 @@ std::span<const uint8_t> image_bytes(const tinygltf::Model& model, size_t index,
 }
 
 bool decoded_row_by_row(const ImagePlan& plan) {
-    return plan.width != plan.header.width || plan.height != plan.header.height ||
+    return plan.header.format == "webp" ||  // EXT_texture_webp: OpenImageIO decodes it, stb_image cannot
+           plan.width != plan.header.width || plan.height != plan.header.height ||
            std::max(plan.header.width, plan.header.height) > kWholeDecodeMaxSide;
 }
 

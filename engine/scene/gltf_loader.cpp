@@ -13,6 +13,7 @@
 #include <facet/core/log.h>
 #include "scene/gltf_accessors.h"
 #include "scene/gltf_errors.h"
+#include "scene/gltf_extensions.h"
 #include "scene/gltf_images.h"
 #include "scene/gltf_materials.h"
 #include "scene/gltf_meshes.h"
@@ -26,12 +27,10 @@ using namespace gltf_detail;
 namespace {
 
 Scene convert(const tinygltf::Model& model, const GltfLimits& limits, int scene_index) {
-    // A required extension changes what the data means (compressed meshes, quantised
-    // attributes, other image formats): loading on without it would draw garbage.
-    for (const std::string& extension : model.extensionsRequired)
-        if (extension != "KHR_lights_punctual" && extension != "KHR_materials_emissive_strength")
-            fail("requires unsupported extension " + extension);
+    // extensionsRequired was checked by parse (gltf_extensions.h); what is used but
+    // ignored is said.
     Scene scene;
+    scene.warnings = ignored_extension_warnings(model);
     validate_buffer_views(model);
     const GeometryCount geometry = count_geometry(model, limits);
     scene.vertices.reserve(size_t(geometry.vertices));

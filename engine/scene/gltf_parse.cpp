@@ -9,7 +9,9 @@
 #include <fstream>
 
 #include <facet/core/units.h>
+#include "scene/gltf_decompress_json.h"
 #include "scene/gltf_errors.h"
+#include "scene/gltf_extensions.h"
 
 namespace facet::gltf_detail {
 
@@ -113,12 +115,15 @@ tinygltf::Model parse(const std::string& path, const std::vector<uint8_t>& bytes
     std::string base_dir = fs::path(path).parent_path().string();
     bool ok = false;
     try {
-        if (is_glb(path, bytes)) {
-            check_glb_header(bytes);
-            ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), base_dir);
+        std::vector<uint8_t> prepared;  // compressed files' JSON as tinygltf takes it
+        const bool glb = is_glb(path, bytes);
+        if (glb) check_glb_header(bytes);
+        const std::vector<uint8_t>& input = prepare_compressed_json(bytes, glb, prepared) ? prepared : bytes;
+        if (glb) {
+            ok = loader.LoadBinaryFromMemory(&model, &err, &warn, input.data(), unsigned(input.size()), base_dir);
         } else {
-            ok = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
-                                            unsigned(bytes.size()), base_dir);
+            ok = loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(input.data()),
+                                            unsigned(input.size()), base_dir);
         }
     } catch (const std::exception& e) {  // the JSON library may throw past tinygltf
         ok = false;
@@ -127,6 +132,7 @@ tinygltf::Model parse(const std::string& path, const std::vector<uint8_t>& bytes
     // A refused image is only a warning to tinygltf; the budget's reason wins either way.
     if (!budget.refusal.empty()) fail(budget.refusal);
     if (!ok) fail("glTF parse failed: " + trim(err.empty() ? warn : err));
+    apply_extensions(model);  // required extensions checked, compressed meshes decoded
     return model;
 }
 

@@ -19,5 +19,7 @@ ByteVector read_bytes(const std::filesystem::path& path);
 ByteVector png_bytes(uint32_t width, uint32_t height);
 
 void make_gltf_corpus(const std::filesystem::path& dir);
+// Compressed meshes and extension lists (the end of make_corpus_gltf.cpp).
+void make_compressed_gltf_corpus(const std::filesystem::path& dir);
 
 }  // namespace facet::fuzz

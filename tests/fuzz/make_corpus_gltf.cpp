@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "make_corpus.h"
+#include "../support/compressed_gltf.h"
 
 namespace facet::fuzz {
 
@@ -320,7 +321,7 @@ void make_gltf_corpus(const std::filesystem::path& dir) {
                document(buffer, R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":9}]}],)" + kOneNode, q,
                         "", R"(,{"bufferView":4,"componentType":5123,"count":5,"type":"SCALAR"})"));
     write_seed(dir, "bad_required_extension.gltf",
-               document(buffer, kTriangle + R"(,"extensionsRequired":["KHR_draco_mesh_compression"])", q));
+               document(buffer, kTriangle + R"(,"extensionsRequired":["KHR_made_up_extension"])", q));
     write_seed(dir, "bad_image_bytes.gltf",
                document(buffer, textured(R"({"uri":"data:image/png;base64,bm90IGEgcG5n"})"), q));
     write_seed(dir, "bad_scene_ref.gltf", document(buffer, kTriangle + R"(,"scenes":[{"nodes":[7]}])", q));
@@ -343,6 +344,115 @@ void make_gltf_corpus(const std::filesystem::path& dir) {
     ByteVector long_chunk = textured_glb;
     long_chunk[13] = 0x7F;  // JSON chunk length past the end
     write_seed(dir, "bad_glb_chunk.glb", long_chunk);
+    make_compressed_gltf_corpus(dir);
+}
+
+// Compressed meshes and extension lists (engine/scene/gltf_decompress*.cpp,
+// gltf_extensions.cpp): small meshopt and Draco files written with the libraries' own
+// encoders (tests/support/compressed_gltf.h), then corrupt streams and forged fields.
+namespace {
+
+namespace fs = std::filesystem;
+
+ByteVector compressed_file(const std::string& name, void (*write)(const fs::path&)) {
+    const fs::path dir = fs::temp_directory_path() / "facet-make-corpus-compressed";
+    fs::create_directories(dir);
+    write(dir / name);
+    ByteVector bytes = read_bytes(dir / name);
+    fs::remove_all(dir);
+    return bytes;
+}
+
+// The GLB with its JSON chunk's first `from` replaced by `to` (the BIN chunk kept).
+ByteVector edited_glb(const ByteVector& file, const std::string& from, const std::string& to) {
+    uint32_t json_length;
+    std::memcpy(&json_length, &file[12], 4);
+    std::string json(file.begin() + 20, file.begin() + 20 + json_length);
+    const size_t at = json.find(from);
+    if (at != std::string::npos) json.replace(at, from.size(), to);
+    uint32_t bin_length;
+    std::memcpy(&bin_length, &file[20 + json_length], 4);
+    const auto bin_at = file.begin() + 28 + json_length;
+    return glb(json, ByteVector(bin_at, bin_at + bin_length));
+}
+
+// The byte `offset` into the BIN chunk set to `value`.
+ByteVector poked_bin(ByteVector file, size_t offset, uint8_t value) {
+    uint32_t json_length;
+    std::memcpy(&json_length, &file[12], 4);
+    file[28 + json_length + offset] = value;
+    return file;
+}
+
+}  // namespace
+
+void make_compressed_gltf_corpus(const fs::path& dir) {
+    const ByteVector meshopt = compressed_file("m.glb", [](const fs::path& p) {
+        test::write_meshopt_gltf(p, test::wavy_grid(5, 4));
+    });
+    write_seed(dir, "meshopt_grid.glb", meshopt);
+    write_seed(dir, "meshopt_sequence_exp.glb", compressed_file("s.glb", [](const fs::path& p) {
+        test::MeshoptOptions o;
+        o.index_sequence = o.exponential_positions = true;
+        o.required = false;
+        test::write_meshopt_gltf(p, test::wavy_grid(3, 6), o);
+    }));
+    const ByteVector draco = compressed_file("d.glb", [](const fs::path& p) {
+        test::write_draco_gltf(p, test::wavy_grid(5, 4));
+    });
+    write_seed(dir, "draco_grid.glb", draco);
+    write_seed(dir, "draco_sequential.glb", compressed_file("q.glb", [](const fs::path& p) {
+        test::DracoOptions o;
+        o.speed = 10;
+        test::write_draco_gltf(p, test::wavy_grid(2, 3), o);
+    }));
+
+    write_seed(dir, "bad_meshopt_stream.glb", poked_bin(meshopt, 0, 0x00));
+    write_seed(dir, "garbled_meshopt_data.glb", poked_bin(meshopt, 40, 0xFF));
+    write_seed(dir, "bad_meshopt_count.glb", edited_glb(meshopt, "\"count\": 30,", "\"count\": 300000000,"));
+    write_seed(dir, "bad_meshopt_mode.glb", edited_glb(meshopt, "\"TRIANGLES\"", "\"TRIANGLE\""));
+    write_seed(dir, "bad_meshopt_filter.glb",
+               edited_glb(meshopt, "\"mode\": \"ATTRIBUTES\"", "\"mode\": \"ATTRIBUTES\", \"filter\": \"QUATERNION\""));
+    write_seed(dir, "bad_meshopt_buffer.glb", edited_glb(meshopt, "{\"buffer\": 0,", "{\"buffer\": 7,"));
+    write_seed(dir, "bad_draco_stream.glb", poked_bin(draco, 0, 'X'));
+    write_seed(dir, "bad_draco_data.glb", poked_bin(draco, 30, 0xFF));
+    write_seed(dir, "bad_draco_count.glb", edited_glb(draco, "\"count\": 30,", "\"count\": 29,"));
+    write_seed(dir, "bad_draco_attribute.glb", edited_glb(draco, "\"TEXCOORD_0\": 2}", "\"TEXCOORD_0\": 99}"));
+    write_seed(dir, "bad_draco_view.glb", edited_glb(draco, "{\"bufferView\": 0,", "{\"bufferView\": 5,"));
+
+    const std::string triangle =
+        R"({"asset":{"version":"2.0"},%LISTS%"buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)"
+        R"(AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],"bufferViews":[{"buffer":0,"byteLength":36}],)"
+        R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}],)"
+        R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)" + kOneNode + "}";
+    auto with_lists = [&](const std::string& lists) {
+        std::string text = triangle;
+        text.replace(text.find("%LISTS%"), 7, lists);
+        return text;
+    };
+    const std::string webp_uri = "data:image/webp;base64," + base64(ByteVector(test::kWebp, test::kWebp + sizeof test::kWebp));
+    const std::string webp_texture =
+        R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0}]}],)"
+        R"("materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}],)"
+        R"("images":[{"uri":")" + webp_uri + R"("}],)";
+    auto with_texture = [&](const std::string& texture, const std::string& image_uri) {
+        std::string text = with_lists(R"("extensionsUsed":["EXT_texture_webp"],"extensionsRequired":["EXT_texture_webp"],)");
+        const std::string meshes = R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)";
+        std::string textured = webp_texture;
+        textured.replace(textured.find(webp_uri), webp_uri.size(), image_uri);
+        text.replace(text.find(meshes), meshes.size(), textured + R"("textures":[)" + texture + "],");
+        return text;
+    };
+    write_seed(dir, "webp_texture.gltf", with_texture(R"({"extensions":{"EXT_texture_webp":{"source":0}}})", webp_uri));
+    write_seed(dir, "bad_webp_source.gltf", with_texture(R"({"extensions":{"EXT_texture_webp":{"source":3}}})", webp_uri));
+    write_seed(dir, "bad_webp_bytes.gltf",
+               with_texture(R"({"extensions":{"EXT_texture_webp":{"source":0}}})",
+                            "data:image/webp;base64," + base64(ByteVector(test::kWebp, test::kWebp + 40))));
+    write_seed(dir, "extensions_used_unknown.gltf",
+               with_lists(R"("extensionsUsed":["KHR_materials_made_up","KHR_lights_punctual"],)"));
+    write_seed(dir, "bad_extensions_required_two.gltf",
+               with_lists(R"("extensionsUsed":["KHR_made_up_a","EXT_made_up_b"],)"
+                          R"("extensionsRequired":["KHR_made_up_a","EXT_made_up_b"],)"));
 }
 
 }  // namespace facet::fuzz

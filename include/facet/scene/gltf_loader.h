@@ -2,6 +2,7 @@
 // glTF 2.0 files (.gltf with external or data-URI resources, and .glb) into a Scene.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <facet/core/result.h>
 #include <facet/scene/scene.h>
@@ -48,5 +49,10 @@ constexpr uint64_t kMaxWholeDecodeBytes = uint64_t(256) << 20;
 // missing tangents where a material has a normal texture.
 // Any malformed input gives Error{"<path>: <reason>"}; nothing is read out of bounds.
 Result<Scene> load_gltf(const std::string& path, const GltfLimits& limits = {}, int scene = -1);
+
+// The glTF extensions load_gltf implements, sorted (for help texts and documentation).
+// Others in a file's extensionsRequired make it an error naming them all; others in its
+// extensionsUsed are ignored with one Scene::warnings line each.
+std::vector<std::string> gltf_supported_extensions();
 
 }  // namespace facet

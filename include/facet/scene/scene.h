@@ -144,6 +144,9 @@ struct Scene {
     std::vector<Instance> instances;
     std::vector<Light> lights;
     std::vector<Camera> cameras;  // in world space, from camera nodes
+    // What the loader met but does not draw (an extension in extensionsUsed Facet
+    // ignores, ...), one line each; the programs print them and write them in NAME.json.
+    std::vector<std::string> warnings;
 
     // World-space bounds of all instances (min > max when empty).
     std::pair<glm::vec3, glm::vec3> world_bounds() const;
