@@ -4,11 +4,14 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <tuple>
+#include <utility>
 
 #include <facet/graph/render_graph.h>
 #include <facet/reference/final_image_accuracy.h>
 #include <facet/render/gpu_scene.h>
 #include <facet/scene/builtin_scenes.h>
+#include <facet/scene/scene_needs.h>
 #include "core/guarded.h"
 #include "render/shading_choice.h"
 
@@ -88,31 +91,64 @@ ProbeViews cast_probe_views(const Scene& scene, const CameraView& camera, uint32
 
 }  // namespace
 
-std::array<bool, 8> scene_groups(const Scene& scene) {
-    std::array<bool, 8> reached{};
-    bool any = false;
+Scene probe_scene(const Scene& scene) {
+    Scene probe = builtin_scene("builtin:spheres").value();  // built in: cannot fail
+    // Untextured materials: the probe's spheres take their (roughness, metalness) pairs
+    // themselves, in turn (a scene of 49 or fewer pairs is probed exactly).
+    bool textured = false;
+    std::vector<std::pair<float, float>> pairs;
     for (const Material& m : scene.materials) {
-        const bool textured = m.metallic_roughness_texture.valid();
-        const double r_hi = m.roughness, r_lo = textured ? 0.0 : m.roughness;
-        const double m_hi = m.metallic, m_lo = textured ? 0.0 : m.metallic;
-        for (int band = 0; band < 4; ++band) {
-            if (r_hi < band_lo[band] || r_lo >= band_hi[band]) continue;
-            if (m_lo < 0.5) reached[size_t(2 * band)] = any = true;
-            if (m_hi >= 0.5) reached[size_t(2 * band + 1)] = any = true;
-        }
+        textured = textured || m.metallic_roughness_texture.valid();
+        if (m.roughness >= float(band_lo[0])) pairs.push_back({m.roughness, m.metallic});
     }
-    if (!any) reached.fill(true);
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    if (!textured && !pairs.empty() && pairs.size() <= probe.materials.size()) {
+        for (size_t i = 0; i < probe.materials.size(); ++i)
+            std::tie(probe.materials[i].roughness, probe.materials[i].metallic) = pairs[i % pairs.size()];
+        return probe;
+    }
+    // Otherwise the grid spans the materials' range: factors, down to 0 where a texture
+    // scales them.
+    const SceneNeeds needs = scene_needs(scene);
+    float r_lo = 1, r_hi = 0, m_lo = 1, m_hi = 0;
+    for (const Material& m : scene.materials) {
+        const bool scaled = m.metallic_roughness_texture.valid();
+        r_lo = std::min(r_lo, scaled ? 0.0f : m.roughness);
+        r_hi = std::max(r_hi, m.roughness);
+        m_lo = std::min(m_lo, scaled ? 0.0f : m.metallic);
+        m_hi = std::max(m_hi, m.metallic);
+    }
+    r_lo = std::max({r_lo, needs.min_roughness, float(band_lo[0])});
+    if (!(r_hi >= r_lo)) r_lo = float(band_lo[0]), r_hi = 1;
+    if (!needs.diffuse) m_lo = m_hi = 1;
+    if (!(m_hi >= m_lo)) m_lo = 0, m_hi = 1;
+    const SpheresGrid grid;
+    for (size_t i = 0; i < probe.materials.size(); ++i) {
+        const float column = float(i % grid.columns) / float(grid.columns - 1);
+        const float row = float(i / grid.columns) / float(grid.rows - 1);
+        probe.materials[i].roughness = r_lo + (r_hi - r_lo) * column;
+        probe.materials[i].metallic = m_lo + (m_hi - m_lo) * row;
+    }
+    return probe;
+}
+
+std::array<bool, 8> material_groups(const Scene& scene) {
+    std::array<bool, 8> reached{};
+    for (const Material& m : scene.materials)
+        for (int band = 0; band < 4; ++band)
+            if (m.roughness >= band_lo[band] && m.roughness < band_hi[band])
+                reached[size_t(2 * band + (m.metallic >= 0.5f ? 1 : 0))] = true;
     return reached;
 }
 
 Result<ShadingPrediction> predict_shading_errors(RenderSession::State& s, std::span<const ShadingMethod> methods,
-                                                 const std::array<bool, 8>& groups,
                                                  const PredictionSettings& settings) try {
     const auto start = std::chrono::steady_clock::now();
     Context& context = *s.context;
-    auto probe_scene = builtin_scene("builtin:spheres");
-    if (!probe_scene) return probe_scene.error();
-    auto gpu_scene = GpuScene::create(context, *probe_scene);
+    const Scene probe = probe_scene(s.scene);
+    const std::array<bool, 8> groups = material_groups(probe);
+    auto gpu_scene = GpuScene::create(context, probe);
     if (!gpu_scene) return gpu_scene.error();
     auto renderer = ForwardRenderer::create(context, *s.programs);
     if (!renderer) return renderer.error();
@@ -126,7 +162,7 @@ Result<ShadingPrediction> predict_shading_errors(RenderSession::State& s, std::s
     f.height = settings.height;
     f.skybox = false;
     f.lights.clear();
-    const auto [lo, hi] = probe_scene->world_bounds();
+    const auto [lo, hi] = probe.world_bounds();
     f.camera = frame_bounds(lo, hi, glm::radians(45.0f), float(f.width) / float(f.height));
 
     auto render = [&](ShadingMethod method) -> Result<std::vector<float>> {
@@ -146,6 +182,7 @@ Result<ShadingPrediction> predict_shading_errors(RenderSession::State& s, std::s
     };
 
     ShadingPrediction out;
+    out.groups = groups;
     std::optional<test::FinalImageTruth> truth;
     for (size_t i = 0; i < methods.size(); ++i) {
         auto hdr = render(methods[i]);
@@ -153,7 +190,7 @@ Result<ShadingPrediction> predict_shading_errors(RenderSession::State& s, std::s
         if (!truth) {
             // The probe's geometry and materials are the same for every method: the truth
             // is summed once, at the pixels the first render covers.
-            const ProbeViews v = cast_probe_views(*probe_scene, f.camera, f.width, f.height);
+            const ProbeViews v = cast_probe_views(probe, f.camera, f.width, f.height);
             const test::FinalImageViews probe{f.width, f.height, *hdr, v.normal, v.position, v.basecolor, v.metallic,
                                               v.roughness};
             test::AccuracySettings accuracy;

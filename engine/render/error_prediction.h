@@ -22,11 +22,17 @@ struct PredictionSettings {
     uint32_t pixels = 480;               // probe pixels compared with the truth (all groups together)
 };
 
-// The groups a scene's materials reach (band-major as test::FinalImageAccuracy::groups:
-// 2 * band + metal): a material's roughness and metalness factors, down to 0 where a
-// texture scales them. A scene reaching none (all smoother than 0.2) counts as reaching
-// all: the prediction then speaks for the measure's every group.
-std::array<bool, 8> scene_groups(const Scene& scene);
+// The probe: builtin:spheres (7 x 7, the measure's scene) with the scene's
+// materials: its distinct (roughness, metalness) pairs of roughness 0.2 and up, in turn,
+// where no texture scales them and there are 49 or fewer; else roughness (columns) and
+// metalness (rows) spread over what the materials span (factors, down to 0 where a
+// texture scales them; roughness from the smallest any texel has, scene/scene_needs.h,
+// what the bake serves; metalness 1 alone where nothing is diffuse: the bake then has no
+// irradiance). A scene smoother than 0.2 everywhere gets the measure's whole range.
+Scene probe_scene(const Scene& scene);
+// The groups (band-major as test::FinalImageAccuracy::groups: 2 * band + metal) that a
+// scene's materials fall in (factors only; roughness below 0.2 in none).
+std::array<bool, 8> material_groups(const Scene& scene);
 
 struct MethodPrediction {
     ShadingMethod method = ShadingMethod::split_sum;
@@ -37,6 +43,7 @@ struct MethodPrediction {
 
 struct ShadingPrediction {
     std::vector<MethodPrediction> methods;  // in the order asked for
+    std::array<bool, 8> groups{};           // the probe's (material_groups of probe_scene)
     double seconds = 0;                     // wall time: probe renders and truth sums
     double truth_seconds = 0;
 };
@@ -45,7 +52,6 @@ struct ShadingPrediction {
 // each of `methods` must be one the bake serves (render/shading_choice.h,
 // shading_candidates). Device failures are returned as the Error.
 Result<ShadingPrediction> predict_shading_errors(RenderSession::State& s, std::span<const ShadingMethod> methods,
-                                                 const std::array<bool, 8>& groups,
                                                  const PredictionSettings& settings = {});
 
 }  // namespace facet

@@ -136,9 +136,9 @@ Status choose_session_shading(RenderSession::State& s, const SayFn& say) {
         finish_shading_choice(r, lights, m.extracted_power_fraction);
     } else {
         const std::vector<ShadingMethod> methods = shading_candidates(r.choice, lights);
-        const std::array<bool, 8> groups = scene_groups(s.scene);
-        auto predicted = predict_shading_errors(s, methods, groups);
+        auto predicted = predict_shading_errors(s, methods);
         if (!predicted) return predicted.error();
+        const std::array<bool, 8>& groups = predicted->groups;
         std::vector<ShadingCandidate> candidates;
         for (const MethodPrediction& p : predicted->methods) candidates.push_back({p.method, p.worst});
         size_t chosen = 0;
