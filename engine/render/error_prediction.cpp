@@ -216,6 +216,9 @@ Result<ShadingPrediction> predict_shading_errors(RenderSession::State& s, std::s
             }
         }
         out.methods.push_back(p);
+        // The methods come cheapest first: one within the target ends the search (a dearer
+        // one would not be chosen), saving its pipeline and probe render.
+        if (p.worst <= settings.stop_within) break;
     }
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;

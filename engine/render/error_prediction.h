@@ -20,6 +20,9 @@ struct PredictionSettings {
     uint32_t width = 320, height = 180;  // the probe's image
     uint32_t truth_env_width = 256;      // the truth's environment is box-filtered down to about this width
     uint32_t pixels = 480;               // probe pixels compared with the truth (all groups together)
+    // Stop after the first method whose worst group is within this (the methods given
+    // cheapest first, the rest are then not predicted); negative: predict every one.
+    double stop_within = -1;
 };
 
 // The probe: builtin:spheres (7 x 7, the measure's scene) with the scene's
@@ -42,7 +45,7 @@ struct MethodPrediction {
 };
 
 struct ShadingPrediction {
-    std::vector<MethodPrediction> methods;  // in the order asked for
+    std::vector<MethodPrediction> methods;  // in the order asked for (up to the stop, PredictionSettings)
     std::array<bool, 8> groups{};           // the probe's (material_groups of probe_scene)
     double seconds = 0;                     // wall time: probe renders and truth sums
     double truth_seconds = 0;

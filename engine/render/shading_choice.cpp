@@ -136,7 +136,11 @@ Status choose_session_shading(RenderSession::State& s, const SayFn& say) {
         finish_shading_choice(r, lights, m.extracted_power_fraction);
     } else {
         const std::vector<ShadingMethod> methods = shading_candidates(r.choice, lights);
-        auto predicted = predict_shading_errors(s, methods);
+        // Candidates come cheapest first: the automatic choice needs no prediction past the
+        // first within the target.
+        PredictionSettings settings;
+        if (r.choice.requested == ShadingMethod::automatic) settings.stop_within = r.choice.target_error;
+        auto predicted = predict_shading_errors(s, methods, settings);
         if (!predicted) return predicted.error();
         const std::array<bool, 8>& groups = predicted->groups;
         std::vector<ShadingCandidate> candidates;
@@ -160,7 +164,7 @@ Status choose_session_shading(RenderSession::State& s, const SayFn& say) {
                 if (groups[g] && !std::isnan(p.group_error[g]))
                     r.choice.predicted_groups.push_back({group_label(g), p.group_error[g]});
         }
-        say("predicted the error of " + std::to_string(methods.size()) + " method(s) on a probe in " +
+        say("predicted the error of " + std::to_string(predicted->methods.size()) + " method(s) on a probe in " +
             std::to_string(int(std::lround(1000 * predicted->seconds))) + " ms (truth sums " +
             std::to_string(int(std::lround(1000 * predicted->truth_seconds))) + " ms)");
     }

@@ -32,7 +32,7 @@ bool bends_lookup(ShadingMethod method);
 
 // The methods a bake serves: an extraction that took lights out leaves a residual map,
 // which only the methods shading those lights complete; any other bake serves the two
-// split-sum lookups. An explicit request is its own only candidate.
+// split-sum lookups. An explicit request is its own only candidate. Cheapest first.
 std::vector<ShadingMethod> shading_candidates(const ShadingChoice& choice, size_t extracted_lights);
 
 struct ShadingCandidate {
