@@ -191,14 +191,14 @@ Result<ShadingPrediction> predict_shading_errors(RenderSession::State& s, std::s
             // The probe's geometry and materials are the same for every method: the truth
             // is summed once, at the pixels the first render covers.
             const ProbeViews v = cast_probe_views(probe, f.camera, f.width, f.height);
-            const test::FinalImageViews probe{f.width, f.height, *hdr, v.normal, v.position, v.basecolor, v.metallic,
+            const test::FinalImageViews views{f.width, f.height, *hdr, v.normal, v.position, v.basecolor, v.metallic,
                                               v.roughness};
             test::AccuracySettings accuracy;
             accuracy.intensity = s.job.ibl_intensity;
             accuracy.max_pixels = settings.pixels;
             const test::TexelLights texels = test::texel_lights(truth_environment(*s.env, settings.truth_env_width));
             const glm::vec3 eye = f.camera.position;
-            truth = test::final_image_truth(probe, {eye.x, eye.y, eye.z}, texels, s.frame.brdf, accuracy);
+            truth = test::final_image_truth(views, {eye.x, eye.y, eye.z}, texels, s.frame.brdf, accuracy);
             out.truth_seconds = truth->seconds;
         }
         const test::FinalImageAccuracy a = test::final_image_accuracy(*truth, *hdr);
