@@ -120,9 +120,9 @@ Scene probe_scene(const Scene& scene) {
         m_hi = std::max(m_hi, m.metallic);
     }
     r_lo = std::max({r_lo, needs.min_roughness, float(band_lo[0])});
-    if (!(r_hi >= r_lo)) r_lo = float(band_lo[0]), r_hi = 1;
-    if (!needs.diffuse) m_lo = m_hi = 1;
+    if (!(r_hi >= r_lo)) r_lo = float(band_lo[0]), r_hi = 1, m_lo = 0, m_hi = 1;  // nothing the measure sees
     if (!(m_hi >= m_lo)) m_lo = 0, m_hi = 1;
+    if (!needs.diffuse) m_lo = m_hi = 1;
     const SpheresGrid grid;
     for (size_t i = 0; i < probe.materials.size(); ++i) {
         const float column = float(i % grid.columns) / float(grid.columns - 1);
