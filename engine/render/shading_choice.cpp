@@ -7,6 +7,7 @@
 #include <facet/core/result.h>
 #include <facet/reference/final_image_accuracy.h>
 #include "render/error_prediction.h"
+#include "render/prediction_cache.h"
 #include "render/render_session_state.h"
 
 namespace facet {
@@ -140,7 +141,8 @@ Status choose_session_shading(RenderSession::State& s, const SayFn& say) {
         // first within the target.
         PredictionSettings settings;
         if (r.choice.requested == ShadingMethod::automatic) settings.stop_within = r.choice.target_error;
-        auto predicted = predict_shading_errors(s, methods, settings);
+        bool from_cache = false;
+        auto predicted = predict_or_reuse(s, methods, settings, from_cache);
         if (!predicted) return predicted.error();
         const std::array<bool, 8>& groups = predicted->groups;
         std::vector<ShadingCandidate> candidates;
@@ -164,9 +166,12 @@ Status choose_session_shading(RenderSession::State& s, const SayFn& say) {
                 if (groups[g] && !std::isnan(p.group_error[g]))
                     r.choice.predicted_groups.push_back({group_label(g), p.group_error[g]});
         }
-        say("predicted the error of " + std::to_string(predicted->methods.size()) + " method(s) on a probe in " +
-            std::to_string(int(std::lround(1000 * predicted->seconds))) + " ms (truth sums " +
-            std::to_string(int(std::lround(1000 * predicted->truth_seconds))) + " ms)");
+        if (from_cache)
+            say("predicted errors of " + std::to_string(predicted->methods.size()) + " method(s) from the bake cache");
+        else
+            say("predicted the error of " + std::to_string(predicted->methods.size()) + " method(s) on a probe in " +
+                std::to_string(int(std::lround(1000 * predicted->seconds))) + " ms (truth sums " +
+                std::to_string(int(std::lround(1000 * predicted->truth_seconds))) + " ms)");
     }
     r.job.frame.dominant_direction = bends_lookup(r.choice.method);
     s.frame.dominant_direction = r.job.frame.dominant_direction;

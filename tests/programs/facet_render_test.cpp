@@ -211,7 +211,10 @@ TEST(FacetRender, ExtractLightsFindsTheBuiltinSun) {
     Ran r = run("--model builtin:sphere --env builtin:sky --extract-lights" + fast + " --out " + dir / "sun.png");
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_EQ(r.output.find("Validation"), std::string::npos) << r.output;
-    // Said once whichever way the bake came: baked fresh, then from the bake cache.
+    // Said once whichever way the bake came: baked fresh, then from the bake cache. The
+    // shading's predicted error is kept beside the bake: the second run reads it back,
+    // the same to the last digit.
+    std::string predicted[2];
     for (int run_index = 0; run_index < 2; ++run_index) {
         Ran c = run("--model builtin:sphere --env builtin:sky --extract-lights --bake-cache " + dir / "cache" + fast +
                     " --out " + dir / "cached.png");
@@ -220,7 +223,14 @@ TEST(FacetRender, ExtractLightsFindsTheBuiltinSun) {
         const size_t said = c.output.find("extracted 1 light(s)");
         EXPECT_NE(said, std::string::npos) << c.output;
         EXPECT_EQ(c.output.find("extracted 1 light(s)", said + 1), std::string::npos) << c.output;
+        EXPECT_EQ(c.output.find("from the bake cache") != std::string::npos, run_index == 1) << c.output;
+        std::ifstream cached_json(dir / "cached.json");
+        const std::string text((std::istreambuf_iterator<char>(cached_json)), {});
+        const size_t at = text.find("\"predicted_error\": ");
+        ASSERT_NE(at, std::string::npos) << text;
+        predicted[run_index] = text.substr(at, text.find(',', at) - at);
     }
+    EXPECT_EQ(predicted[0], predicted[1]);
     std::ifstream in(dir / "sun.json");
     const std::string json((std::istreambuf_iterator<char>(in)), {});
     EXPECT_NE(json.find("\"environment_lights\": ["), std::string::npos) << json;
