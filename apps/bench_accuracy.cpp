@@ -44,7 +44,15 @@ struct Measured {
     uint32_t env_w = 0, env_h = 0;
     test::FinalImageAccuracy accuracy;
     double forward_ms = 0;
+    ShadingChoice shading;  // the session's method and its predicted errors (for the frame's model)
 };
+
+// The session's predicted error of a group ("roughness [0.2,0.4) metal"); negative: none.
+double predicted_of(const ShadingChoice& c, const std::string& group) {
+    for (const GroupErrorPrediction& g : c.predicted_groups)
+        if (g.group == group) return g.error;
+    return -1;
+}
 
 std::string json_of(const std::vector<Measured>& results, const AccuracyOptions& o, const std::string& device) {
     JsonWriter j;
@@ -59,6 +67,11 @@ std::string json_of(const std::vector<Measured>& results, const AccuracyOptions&
         j.value("env_width", m.env_w).value("env_height", m.env_h);
         j.value("forward_ms", m.forward_ms).value("truth_seconds", m.accuracy.truth_seconds);
         j.value("pixels", uint32_t(m.accuracy.pixels)).value("worst_mean_rel", m.accuracy.worst_mean_rel);
+        j.value("shading", shading_method_name(m.shading.method)).value("shading_reason", m.shading.reason);
+        j.value("target_error", m.shading.target_error);
+        if (m.shading.predicted_error && m.model == o.job.frame.brdf)
+            j.value("predicted_worst_mean_rel", *m.shading.predicted_error)
+                .value("predicted_worst_group", m.shading.predicted_worst_group);
         j.value("worst_group", m.accuracy.worst >= 0 ? test::group_name(m.accuracy.groups[size_t(m.accuracy.worst)])
                                                      : std::string("none"));
         j.begin_array("groups");
@@ -66,6 +79,8 @@ std::string json_of(const std::vector<Measured>& results, const AccuracyOptions&
             j.begin_object().value("group", test::group_name(g)).value("roughness_min", g.roughness_min);
             j.value("roughness_max", g.roughness_max).value("metal", g.metal).value("pixels", uint32_t(g.pixels));
             j.value("mean_rel", g.mean_rel).value("max_rel", g.max_rel).value("mean_signed", g.mean_signed);
+            const double predicted = predicted_of(m.shading, test::group_name(g));
+            if (predicted >= 0 && m.model == o.job.frame.brdf) j.value("predicted_mean_rel", predicted);
             j.end_object();
         }
         j.end_array().end_object();
@@ -177,7 +192,7 @@ int run_accuracy(int argc, char** argv) {
         for (BrdfModel model : o.truth_models) {
             std::fprintf(stderr, "%s:   truth: %s model, %u texels, up to %u pixels\n", program, brdf_model_name(model),
                          texels.w * texels.h, o.max_pixels);
-            Measured m{label, model, texels.w, texels.h, {}, median(forward_ms)};
+            Measured m{label, model, texels.w, texels.h, {}, median(forward_ms), (*session)->shading()};
             try {
                 m.accuracy = test::final_image_accuracy(views, {eye.x, eye.y, eye.z}, lights, model, settings);
             } catch (const std::invalid_argument& e) {
@@ -189,6 +204,18 @@ int run_accuracy(int argc, char** argv) {
                         brdf_model_name(job.frame.brdf), brdf_model_name(model),
                         frame->width, frame->height, m.accuracy.pixels, m.accuracy.truth_seconds, m.forward_ms);
             std::printf("%s", test::format_accuracy_table(m.accuracy).c_str());
+            // The prediction is for the frame's own model (the truth the automatic choice sums).
+            if (m.shading.predicted_error && model == job.frame.brdf) {
+                std::printf("  shading %s, predicted per group (probe):", shading_method_name(m.shading.method));
+                for (const test::GroupError& g : m.accuracy.groups) {
+                    const double predicted = predicted_of(m.shading, test::group_name(g));
+                    if (predicted >= 0) std::printf(" %.2f", 100 * predicted);
+                    else std::printf(" -");
+                }
+                std::printf("\n  predicted worst: %s, mean %.2f%% (target %.2f%%)\n",
+                            m.shading.predicted_worst_group.c_str(), 100 * *m.shading.predicted_error,
+                            100 * m.shading.target_error);
+            }
             std::fflush(stdout);
             results.push_back(std::move(m));
         }

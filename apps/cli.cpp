@@ -112,4 +112,11 @@ double parse_double(const std::string& text, const std::string& what) {
     return value;
 }
 
+BrdfModel brdf_option(const Parsed& args, BrdfModel fallback) {
+    if (!args.has("--brdf")) return fallback;
+    const auto brdf = parse_brdf_model(args.get("--brdf"));
+    if (!brdf) throw std::invalid_argument("--brdf: expected gltf or thesis, got '" + args.get("--brdf") + "'");
+    return *brdf;
+}
+
 }  // namespace facet::cli

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <facet/core/brdf_model.h>
+
 namespace facet::cli {
 
 struct OptionSpec {
@@ -71,5 +73,9 @@ int run_program(const char* program, Parse parse, Run run) {
 // Parses a whole string as a number; throws std::invalid_argument naming `what`.
 int parse_int(const std::string& text, const std::string& what, int min, int max);
 double parse_double(const std::string& text, const std::string& what);
+
+// --brdf gltf|thesis: the model named, or `fallback` without the option; throws
+// std::invalid_argument naming the option and the choices.
+BrdfModel brdf_option(const Parsed& args, BrdfModel fallback);
 
 }  // namespace facet::cli

@@ -87,11 +87,7 @@ std::optional<BakeOptions> parse_bake_options(int argc, char** argv) {
     if (a.has("--irradiance-size")) o.irradiance.size = positive(a, "--irradiance-size", 1024);
     if (a.has("--lut-size")) o.lut.size = positive(a, "--lut-size", 4096);
     if (a.has("--lut-samples")) o.lut.sample_count = positive(a, "--lut-samples", 1 << 20);
-    if (a.has("--brdf")) {
-        const auto brdf = parse_brdf_model(a.get("--brdf"));
-        if (!brdf) throw std::invalid_argument("--brdf: expected gltf or thesis, got '" + a.get("--brdf") + "'");
-        o.lut.brdf = *brdf;
-    }
+    o.lut.brdf = cli::brdf_option(a, o.lut.brdf);
     if (a.has("--max-env-width")) o.max_env_width = positive(a, "--max-env-width", int(kMaxEnvironmentSide) / 4);
     if (a.has("--width")) o.sky_width = positive(a, "--width", 16384);
     else o.sky_width = std::min(o.sky_width, std::max(2u, o.max_env_width & ~1u));

@@ -92,7 +92,17 @@ std::string describe(const Options& o, const RenderSession& session, const Rende
         .value("requested", shading_method_name(shading.requested))
         .value("method", shading_method_name(shading.method))
         .value("reason", shading.reason)
-        .end_object();
+        .value("target_error", shading.target_error);
+    // Fractions of the exact value (issue 13's measure on a probe), worst group first; absent
+    // where nothing could be predicted (no environment, a saved bake).
+    if (shading.predicted_error) {
+        j.value("predicted_error", *shading.predicted_error).value("predicted_worst_group", shading.predicted_worst_group);
+        j.begin_array("predicted_groups");
+        for (const GroupErrorPrediction& g : shading.predicted_groups)
+            j.begin_object().value("group", g.group).value("error", g.error).end_object();
+        j.end_array();
+    }
+    j.end_object();
     j.value("lights", uint32_t(f.lights.size()));
     j.begin_array("warnings");  // what the model's loader met but does not draw (Scene::warnings)
     for (const std::string& warning : session.scene().warnings) j.value({}, warning);

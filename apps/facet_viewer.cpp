@@ -103,7 +103,7 @@ std::unique_ptr<RenderSession> open_session(Context& context, const RenderJob& b
     c.status.clear();
     c.bake_passes = (*session)->bake_timings();
     c.warnings = (*session)->warnings();
-    c.shading = std::string(shading_method_name((*session)->shading().method)) + " (" + (*session)->shading().reason + ")";
+    c.shading = (*session)->shading();
     c.lights = (*session)->frame().lights;
     c.material_changed = c.override_material;
     return std::move(*session);

@@ -49,6 +49,9 @@ void add_render_options(cli::Parser& p) {
         .option("--shading", "METHOD",
                 "environment lighting: auto (default: chosen per environment, see NAME.json), split-sum,\n"
                 "                          dominant, lights, lights+dominant")
+        .option("--target-error", "E",
+                "the automatic shading's bound on every group's predicted error, a fraction\n"
+                "                          (default 0.03 = 3%; NAME.json records the choice and its prediction)")
         .flag("--extract-lights", "take suns and lamps out of the environment and shade them as disk lights\n"
                                   "                          with the full BRDF (the rest goes through the split sum)")
         .flag("--multiscatter", "energy compensation for multiple scattering (Kulla-Conty; needs --env)")
@@ -121,11 +124,7 @@ void parse_render_options(const cli::Parsed& a, RenderJob& j) {
         if (n != 1 && n != 2 && n != 4 && n != 8) throw std::invalid_argument("--samples must be 1, 2, 4 or 8");
         j.frame.samples = uint32_t(n);
     }
-    if (a.has("--brdf")) {
-        const auto brdf = parse_brdf_model(a.get("--brdf"));
-        if (!brdf) throw std::invalid_argument("--brdf: expected gltf or thesis, got '" + a.get("--brdf") + "'");
-        j.frame.brdf = *brdf;
-    }
+    j.frame.brdf = cli::brdf_option(a, j.frame.brdf);
     j.frame.multiscatter = a.has("--multiscatter");
     j.extract_lights = a.has("--extract-lights");
     if (a.has("--specular-dir")) {
@@ -144,6 +143,13 @@ void parse_render_options(const cli::Parsed& a, RenderJob& j) {
             throw std::invalid_argument("--shading: expected one of " + std::string(shading_method_names()) + ", got '" +
                                         a.get("--shading") + "'");
         j.shading = *method;
+    }
+    if (a.has("--target-error")) {
+        const double e = cli::parse_double(a.get("--target-error"), "--target-error");
+        if (!(e > 0 && e < 1))
+            throw std::invalid_argument("--target-error: " + a.get("--target-error") +
+                                        " is outside (0, 1): a fraction of the exact value (0.03 = 3%)");
+        j.target_error = e;
     }
     if (a.has("--ibl-intensity")) j.ibl_intensity = number_option(a, "--ibl-intensity", 0.0f, 1e6f);
     if (a.has("--max-env-width"))

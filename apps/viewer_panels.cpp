@@ -116,7 +116,18 @@ void draw_panels(ViewerControls& c) {
     double bake_ms = 0;
     for (const PassTiming& t : c.bake_passes) bake_ms += t.time_ms;
     ImGui::Text("bake %.0f ms GPU", bake_ms);
-    ImGui::TextWrapped("shading: %s", c.shading.c_str());
+    ImGui::TextWrapped("shading: %s (%s)", shading_method_name(c.shading.method), c.shading.reason.c_str());
+    if (c.shading.predicted_error) {
+        // The probe's prediction of issue 13's measure (render/shading_method.h), worst group first.
+        const bool within = *c.shading.predicted_error <= c.shading.target_error;
+        ImGui::TextColored(within ? ImVec4(0.6f, 1.0f, 0.6f, 1.0f) : ImVec4(1.0f, 0.7f, 0.3f, 1.0f),
+                           "predicted error %.1f%% (target %.1f%%), worst: %s", 100 * *c.shading.predicted_error,
+                           100 * c.shading.target_error, c.shading.predicted_worst_group.c_str());
+        for (const GroupErrorPrediction& g : c.shading.predicted_groups)
+            ImGui::Text("  %-30s %5.1f%%", g.group.c_str(), 100 * g.error);
+    } else {
+        ImGui::TextDisabled("predicted error: none (no environment texels to compare with)");
+    }
     for (const std::string& w : c.warnings) ImGui::TextColored(ImVec4(1.0f, 0.7f, 0.3f, 1.0f), "%s", w.c_str());
     ImGui::SliderFloat("exposure", &c.display.exposure, 0.01f, 16.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
     int tonemap = int(c.display.tonemap);

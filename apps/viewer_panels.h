@@ -8,6 +8,7 @@
 
 #include <facet/graph/graph_run.h>
 #include <facet/render/forward_renderer.h>
+#include <facet/render/shading_method.h>
 #include <facet/render/views.h>
 #include <facet/ibl/irradiance.h>
 #include <facet/ibl/specular.h>
@@ -34,7 +35,7 @@ struct ViewerControls {
     // Shown, not edited.
     std::vector<PassTiming> frame_passes, bake_passes;
     std::vector<std::string> warnings;  // IBL methods outside their domain
-    std::string shading;                // the shading method in use and why (the automatic choice)
+    ShadingChoice shading;              // the shading method in use, why, and its predicted error
     double frame_ms = 0;
     std::string status;
 };

@@ -30,8 +30,8 @@ int group_of(double roughness, double metallic) {
 
 }  // namespace
 
-FinalImageAccuracy final_image_accuracy(const FinalImageViews& in, const Vec3& eye, const TexelLights& env,
-                                        BrdfModel model, const AccuracySettings& s) {
+FinalImageTruth final_image_truth(const FinalImageViews& in, const Vec3& eye, const TexelLights& env, BrdfModel model,
+                                  const AccuracySettings& s) {
     const size_t count = size_t(in.width) * in.height;
     for (std::span<const float> image : {in.hdr, in.normal, in.position, in.basecolor, in.metallic, in.roughness})
         if (image.size() != count * 4)
@@ -76,19 +76,35 @@ FinalImageAccuracy final_image_accuracy(const FinalImageViews& in, const Vec3& e
     work(0);
     for (std::thread& t : pool) t.join();
 
+    FinalImageTruth out;
+    out.width = in.width;
+    out.height = in.height;
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    for (size_t k = 0; k < pixels.size(); ++k) {
+        out.index.push_back(pixels[k].index);
+        out.group.push_back(pixels[k].group);
+        out.luminance.push_back(luminance(truth[k]));
+    }
+    return out;
+}
+
+FinalImageAccuracy final_image_accuracy(const FinalImageTruth& truth, std::span<const float> hdr) {
+    if (hdr.size() != size_t(truth.width) * truth.height * 4)
+        throw std::invalid_argument("final_image_accuracy: the render is not " + std::to_string(truth.width) + " x " +
+                                    std::to_string(truth.height) + " RGBA");
     FinalImageAccuracy out;
-    out.truth_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    out.truth_seconds = truth.seconds;
     for (int g = 0; g < 8; ++g) {
         out.groups[size_t(g)].roughness_min = 0.2 + 0.2 * (g / 2);
         out.groups[size_t(g)].roughness_max = g / 2 == 3 ? 1.0 : 0.4 + 0.2 * (g / 2);
         out.groups[size_t(g)].metal = g % 2 == 1;
     }
-    for (size_t k = 0; k < pixels.size(); ++k) {
-        const double t = luminance(truth[k]);
+    for (size_t k = 0; k < truth.index.size(); ++k) {
+        const double t = truth.luminance[k];
         if (!(t > 0)) continue;  // a black environment has no relative error to measure
-        const double r = luminance(&in.hdr[pixels[k].index * 4]);
+        const double r = luminance(&hdr[truth.index[k] * 4]);
         const double signed_rel = (r - t) / t;
-        GroupError& g = out.groups[size_t(pixels[k].group)];
+        GroupError& g = out.groups[size_t(truth.group[k])];
         ++g.pixels;
         g.mean_rel += std::abs(signed_rel);
         g.mean_signed += signed_rel;
@@ -107,6 +123,11 @@ FinalImageAccuracy final_image_accuracy(const FinalImageViews& in, const Vec3& e
         }
     }
     return out;
+}
+
+FinalImageAccuracy final_image_accuracy(const FinalImageViews& views, const Vec3& eye, const TexelLights& env,
+                                        BrdfModel model, const AccuracySettings& settings) {
+    return final_image_accuracy(final_image_truth(views, eye, env, model, settings), views.hdr);
 }
 
 FinalImageAccuracy final_image_accuracy(const FinalImageViews& views, const Vec3& eye, const Equirect& env,

@@ -61,9 +61,11 @@ namespace {
 
 // The session's image-based lighting: a saved bake (--ibl DIR), else the bake cache's entry
 // for this bake key (baked and saved into it on a miss), else a fresh bake.
+// `baked_here`: set when the bake ran in this call (it then said what it extracted).
 Result<BakedEnvironment> bake_for_session(Context& context, RenderSession::State& s,
-                                          const std::function<void(const std::string&)>& say) {
+                                          const std::function<void(const std::string&)>& say, bool& baked_here) {
     const RenderJob& job = s.job;
+    baked_here = false;
     if (!job.ibl_dir.empty()) {
         say("loading the bake in " + job.ibl_dir);
         return BakedEnvironment::load(context, job.ibl_dir);
@@ -81,6 +83,7 @@ Result<BakedEnvironment> bake_for_session(Context& context, RenderSession::State
     };
     auto bake = [&]() -> Result<BakedEnvironment> {
         say("baking " + job.env + " (" + std::to_string(s.env->width) + "x" + std::to_string(s.env->height) + ")");
+        baked_here = true;
         return bake_environment(context, *s.programs, *s.env, settings, callbacks);
     };
     if (job.bake_cache_dir.empty()) return bake();
@@ -124,6 +127,9 @@ Result<BakedEnvironment> bake_for_session(Context& context, RenderSession::State
 
 Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, const RenderJob& requested,
                                                              Scene scene, const ProgressFn& progress) {
+    if (!(requested.target_error > 0 && requested.target_error < 1))
+        return Error{"target error " + std::to_string(requested.target_error) +
+                     " is outside (0, 1): it is a fraction of the exact value (0.03 = 3%)"};
     auto s = std::make_unique<State>();
     s->context = &context;
     s->shading = resolve_shading(requested);
@@ -176,14 +182,14 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
         if (s->env->image.sanitized_texels)
             say(job.env + ": replaced " + std::to_string(s->env->image.sanitized_texels) +
                 " NaN, Inf or negative texels with 0");
-        if (job.extract_lights) {
-            // The reference mode integrates the whole environment, lights included.
-            if (Status st = materialize_environment(context, *s->programs, *s->env); !st) return st.error();
-            s->original_texels = s->env->image.rgba;
-        }
+        // Texels on the CPU (a procedural sky rendered): the shading choice's truth sums
+        // them, and the reference mode integrates the whole environment, lights included.
+        if (Status st = materialize_environment(context, *s->programs, *s->env); !st) return st.error();
+        if (job.extract_lights) s->original_texels = s->env->image.rgba;
     }
     if (saved_bake || job.env != "none") {
-        auto baked = bake_for_session(context, *s, say);
+        bool baked_here = false;
+        auto baked = bake_for_session(context, *s, say, baked_here);
         if (!baked) return baked.error();
         s->baked = std::move(baked).value();
         const BakeMetadata& m = s->baked->metadata();
@@ -196,13 +202,13 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
         s->frame.environment_lights = s->baked->lights();
         s->frame.environment_light_level = m.light_split_level;
         if (job.extract_lights && !saved_bake) {
-            say("extracted " + std::to_string(s->baked->lights().size()) + " light(s) from " + job.env + ", " +
-                std::to_string(int(std::lround(100 * m.extracted_power_fraction))) + "% of its power");
+            // A fresh bake said it already (its progress line); a cached one did not.
+            if (!baked_here)
+                say("extracted " + std::to_string(s->baked->lights().size()) + " light(s) from " + job.env + ", " +
+                    std::to_string(int(std::lround(100 * m.extracted_power_fraction))) + "% of its power");
             for (const std::string& note : m.extraction_notes) say("light extraction: " + note);
         }
-        finish_shading_choice(s->shading, s->baked->lights().size(), m.extracted_power_fraction);
-        s->frame.dominant_direction = s->shading.job.frame.dominant_direction;
-        say("shading: " + std::string(shading_method_name(s->shading.choice.method)) + " (" + s->shading.choice.reason + ")");
+        if (Status chosen = choose_session_shading(*s, say); !chosen) return chosen.error();
         for (const std::string& note : m.format_notes) say(note);
         s->ibl_settings = m.settings;
         s->warnings = m.warnings;

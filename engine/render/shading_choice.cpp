@@ -2,6 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+
+#include <facet/core/result.h>
+#include <facet/reference/final_image_accuracy.h>
+#include "render/error_prediction.h"
+#include "render/prediction_cache.h"
+#include "render/render_session_state.h"
 
 namespace facet {
 
@@ -9,6 +16,7 @@ ResolvedShading resolve_shading(const RenderJob& requested) {
     ResolvedShading r{requested, {}};
     ShadingMethod method = requested.shading;
     r.choice.requested = method;
+    r.choice.target_error = requested.target_error;
     if (requested.extract_lights || requested.frame.dominant_direction) {
         // The older switches add their part to the method (to the plain split sum when
         // automatic).
@@ -36,6 +44,64 @@ ResolvedShading resolve_shading(const RenderJob& requested) {
     return r;
 }
 
+int shading_cost_rank(ShadingMethod method) {
+    switch (method) {
+        case ShadingMethod::split_sum: return 0;
+        case ShadingMethod::dominant: return 1;
+        case ShadingMethod::lights: return 2;
+        case ShadingMethod::lights_dominant: return 3;
+        case ShadingMethod::automatic: break;
+    }
+    throw UsageError("shading_cost_rank: automatic is not a method to cost");
+}
+
+bool shades_lights(ShadingMethod m) { return m == ShadingMethod::lights || m == ShadingMethod::lights_dominant; }
+bool bends_lookup(ShadingMethod m) { return m == ShadingMethod::dominant || m == ShadingMethod::lights_dominant; }
+
+std::vector<ShadingMethod> shading_candidates(const ShadingChoice& choice, size_t extracted_lights) {
+    if (choice.requested != ShadingMethod::automatic) return {choice.method};
+    if (extracted_lights > 0) return {ShadingMethod::lights, ShadingMethod::lights_dominant};
+    return {ShadingMethod::split_sum, ShadingMethod::dominant};
+}
+
+std::string percent_text(double fraction) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f%%", 100 * fraction);
+    return text;
+}
+
+CandidatePick choose_shading(std::span<const ShadingCandidate> candidates, double target_error) {
+    if (candidates.empty()) throw UsageError("choose_shading: no candidate");
+    // Cheapest first; equal costs keep the order given.
+    std::vector<size_t> order(candidates.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+        return shading_cost_rank(candidates[a].method) < shading_cost_rank(candidates[b].method);
+    });
+    std::string others;  // every candidate's prediction, for the reason
+    for (size_t i : order) {
+        others += others.empty() ? "" : ", ";
+        others += std::string(shading_method_name(candidates[i].method)) + " " +
+                  (std::isnan(candidates[i].predicted_error) ? std::string("not predicted")
+                                                              : percent_text(candidates[i].predicted_error));
+    }
+    const std::string target = percent_text(target_error);
+    for (size_t i : order)
+        if (candidates[i].predicted_error <= target_error)  // false for NaN
+            return {i, "predicted " + percent_text(candidates[i].predicted_error) + " <= target " + target +
+                           ", the cheapest within it (" + others + ")"};
+    // None within: the most accurate (NaN never is); the cheapest when none was predicted.
+    size_t best = order.front();
+    for (size_t i : order) {
+        const double e = candidates[i].predicted_error, b = candidates[best].predicted_error;
+        if (!std::isnan(e) && (std::isnan(b) || e < b)) best = i;
+    }
+    if (std::isnan(candidates[best].predicted_error))
+        return {best, "no prediction, the cheapest (" + others + ")"};
+    return {best, "predicted " + percent_text(candidates[best].predicted_error) + " > target " + target +
+                      ": no method within it, the most accurate (" + others + ")"};
+}
+
 void finish_shading_choice(ResolvedShading& r, size_t lights, double power_fraction) {
     if (r.choice.requested != ShadingMethod::automatic || !r.job.extract_lights) return;
     if (lights == 0) {
@@ -48,6 +114,73 @@ void finish_shading_choice(ResolvedShading& r, size_t lights, double power_fract
     r.choice.method = ShadingMethod::lights_dominant;
     r.choice.reason = std::to_string(lights) + " light(s) extracted, " +
                       std::to_string(int(std::lround(100 * power_fraction))) + "% of the power";
+}
+
+namespace {
+
+std::string group_label(size_t g) {
+    test::GroupError e;
+    e.roughness_min = 0.2 + 0.2 * double(g / 2);
+    e.roughness_max = g / 2 == 3 ? 1.0 : 0.4 + 0.2 * double(g / 2);
+    e.metal = g % 2 == 1;
+    return test::group_name(e);
+}
+
+}  // namespace
+
+Status choose_session_shading(RenderSession::State& s, const SayFn& say) {
+    ResolvedShading& r = s.shading;
+    const BakeMetadata& m = s.baked->metadata();
+    const size_t lights = s.baked->lights().size();
+    const bool texels = s.env && !s.env->image.rgba.empty() && s.job.ibl_intensity > 0;
+    if (!texels) {
+        finish_shading_choice(r, lights, m.extracted_power_fraction);
+    } else {
+        const std::vector<ShadingMethod> methods = shading_candidates(r.choice, lights);
+        // Candidates come cheapest first: the automatic choice needs no prediction past the
+        // first within the target.
+        PredictionSettings settings;
+        if (r.choice.requested == ShadingMethod::automatic) settings.stop_within = r.choice.target_error;
+        bool from_cache = false;
+        auto predicted = predict_or_reuse(s, methods, settings, from_cache);
+        if (!predicted) return predicted.error();
+        const std::array<bool, 8>& groups = predicted->groups;
+        std::vector<ShadingCandidate> candidates;
+        for (const MethodPrediction& p : predicted->methods) candidates.push_back({p.method, p.worst});
+        size_t chosen = 0;
+        if (r.choice.requested == ShadingMethod::automatic) {
+            CandidatePick pick = choose_shading(candidates, r.choice.target_error);
+            chosen = pick.index;
+            r.choice.method = candidates[chosen].method;
+            r.choice.reason = (lights ? std::to_string(lights) + " light(s) extracted, " +
+                                            std::to_string(int(std::lround(100 * m.extracted_power_fraction))) +
+                                            "% of the power; "
+                                      : std::string("no bright region to extract; ")) +
+                              pick.reason;
+        }
+        const MethodPrediction& p = predicted->methods[chosen];
+        if (p.worst_group >= 0) {
+            r.choice.predicted_error = p.worst;
+            r.choice.predicted_worst_group = group_label(size_t(p.worst_group));
+            for (size_t g = 0; g < 8; ++g)
+                if (groups[g] && !std::isnan(p.group_error[g]))
+                    r.choice.predicted_groups.push_back({group_label(g), p.group_error[g]});
+        }
+        if (from_cache)
+            say("predicted errors of " + std::to_string(predicted->methods.size()) + " method(s) from the bake cache");
+        else
+            say("predicted the error of " + std::to_string(predicted->methods.size()) + " method(s) on a probe in " +
+                std::to_string(int(std::lround(1000 * predicted->seconds))) + " ms (truth sums " +
+                std::to_string(int(std::lround(1000 * predicted->truth_seconds))) + " ms)");
+    }
+    r.job.frame.dominant_direction = bends_lookup(r.choice.method);
+    s.frame.dominant_direction = r.job.frame.dominant_direction;
+    std::string line = "shading: " + std::string(shading_method_name(r.choice.method)) + " (" + r.choice.reason + ")";
+    if (r.choice.predicted_error)
+        line += "; predicted error " + percent_text(*r.choice.predicted_error) + " in " + r.choice.predicted_worst_group +
+                ", target " + percent_text(r.choice.target_error);
+    say(line);
+    return Ok{};
 }
 
 }  // namespace facet

@@ -2,9 +2,15 @@
 // The session's shading method resolved from the job (render/render_job.h): an explicit
 // --shading, the older switches (extract_lights, frame.dominant_direction), or the
 // automatic choice, made in two steps: before the bake (extract lights, wide regions
-// included) and after it (what the extraction found).
+// included) and after it, among the methods that bake serves, by their predicted error
+// (render/error_prediction.h) and cost.
 #include <cstddef>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
 
+#include <facet/core/result.h>
 #include <facet/render/render_job.h>
 #include <facet/render/shading_method.h>
 
@@ -16,7 +22,45 @@ struct ResolvedShading {
 };
 
 ResolvedShading resolve_shading(const RenderJob& requested);
-// After the bake: `lights` disks found holding `power_fraction` of the environment's power.
+
+// The forward pass's cost rank of a method: split_sum 0 < dominant 1 < lights 2 <
+// lights_dominant 3 (issue 13's order; automatic has none: UsageError).
+int shading_cost_rank(ShadingMethod method);
+// Whether a method shades extracted lights / bends the lookup towards n.
+bool shades_lights(ShadingMethod method);
+bool bends_lookup(ShadingMethod method);
+
+// The methods a bake serves: an extraction that took lights out leaves a residual map,
+// which only the methods shading those lights complete; any other bake serves the two
+// split-sum lookups. An explicit request is its own only candidate. Cheapest first.
+std::vector<ShadingMethod> shading_candidates(const ShadingChoice& choice, size_t extracted_lights);
+
+struct ShadingCandidate {
+    ShadingMethod method = ShadingMethod::split_sum;
+    double predicted_error = 0;  // worst group, a fraction; NaN: not predicted (never within)
+};
+struct CandidatePick {
+    size_t index = 0;  // into the candidates
+    std::string reason;
+};
+// The cheapest candidate whose predicted error is within `target_error`; when none is, the
+// most accurate one (the cheapest of equals), the reason saying so ("predicted 6.3% >
+// target 3%"). A pure function of its inputs (the choice is deterministic). Empty
+// `candidates`: UsageError.
+CandidatePick choose_shading(std::span<const ShadingCandidate> candidates, double target_error);
+
+// Without a prediction (a saved bake, no environment texels): after the bake, `lights`
+// disks found holding `power_fraction` of the environment's power.
 void finish_shading_choice(ResolvedShading& shading, size_t lights, double power_fraction);
+
+// After the session's bake (render/render_session_state.h): predicts the errors of the
+// methods the bake serves where the environment's texels are at hand, chooses (an
+// automatic request) or keeps (an explicit one) the method, records both in s.shading
+// and sets the frame's lookup and disk lights to match. Device failures are returned.
+using SayFn = std::function<void(const std::string&)>;
+Status choose_session_shading(RenderSession::State& s, const SayFn& say);
+
+// "1.4%"
+std::string percent_text(double fraction);
 
 }  // namespace facet

@@ -89,6 +89,10 @@ TEST(FacetRender, BadArgumentsExitTwoWithAReason) {
         {out + " --camera orbit:1,2", "expected orbit:THETA,PHI,RADIUS"},
         {out + " --samples 3", "--samples must be 1, 2, 4 or 8"},
         {out + " --width 0", "--width: 0 is outside"},
+        {out + " --target-error 0", "--target-error: 0 is outside (0, 1)"},
+        {out + " --target-error 2", "--target-error: 2 is outside (0, 1)"},
+        {out + " --target-error abc", "--target-error: 'abc' is not a finite number"},
+        {out + " --brdf phong", "--brdf: expected gltf or thesis, got 'phong'"},
     };
     for (const auto& [args, message] : cases) {
         Ran r = run(args);
@@ -152,9 +156,18 @@ TEST(FacetRender, WritesPngExrJsonAndViews) {
     for (const char* key : {"\"camera\"", "\"position\"", "\"target\"", "\"up\"", "\"yfov_deg\"", "\"width\": 96",
                             "\"height\": 72", "\"content_hash\"", "\"exposure\"", "\"tonemap\": \"reinhard\"",
                             "\"gamma\": \"sRGB\"", "\"version\"", "\"builtin:sky\"", "sphere.normal.exr",
-                            "\"brdf\": \"gltf\"", "\"requested\": \"auto\"", "\"method\": \"lights+dominant\"",
-                            "\"reason\": \"1 light(s) extracted"})
+                            "\"brdf\": \"gltf\"", "\"requested\": \"auto\"", "\"method\": \"lights",
+                            "\"reason\": \"1 light(s) extracted", "\"target_error\": 0.03", "\"predicted_error\": ",
+                            "\"predicted_worst_group\": \"roughness [", "\"predicted_groups\": ["})
         EXPECT_NE(json.find(key), std::string::npos) << key << "\n" << json;
+    // The automatic choice keeps the predicted error within the target, and says it.
+    const size_t at = json.find("\"predicted_error\": ");
+    ASSERT_NE(at, std::string::npos);
+    const double predicted = std::strtod(json.c_str() + at + 19, nullptr);
+    EXPECT_GT(predicted, 0.0);
+    EXPECT_LE(predicted, 0.03);
+    EXPECT_NE(png.output.find("shading: lights"), std::string::npos) << png.output;
+    EXPECT_NE(png.output.find("predicted error "), std::string::npos) << png.output;
     const Pixels ldr = read_pixels(dir / "sphere.png");
     EXPECT_EQ(ldr.width, 96);
     EXPECT_EQ(ldr.height, 72);
@@ -198,7 +211,26 @@ TEST(FacetRender, ExtractLightsFindsTheBuiltinSun) {
     Ran r = run("--model builtin:sphere --env builtin:sky --extract-lights" + fast + " --out " + dir / "sun.png");
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_EQ(r.output.find("Validation"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("extracted 1 light(s)"), std::string::npos) << r.output;
+    // Said once whichever way the bake came: baked fresh, then from the bake cache. The
+    // shading's predicted error is kept beside the bake: the second run reads it back,
+    // the same to the last digit.
+    std::string predicted[2];
+    for (int run_index = 0; run_index < 2; ++run_index) {
+        Ran c = run("--model builtin:sphere --env builtin:sky --extract-lights --bake-cache " + dir / "cache" + fast +
+                    " --out " + dir / "cached.png");
+        ASSERT_EQ(c.status, 0) << c.output;
+        EXPECT_NE(c.output.find(run_index == 0 ? "bake cache: stored" : "bake cache: using"), std::string::npos) << c.output;
+        const size_t said = c.output.find("extracted 1 light(s)");
+        EXPECT_NE(said, std::string::npos) << c.output;
+        EXPECT_EQ(c.output.find("extracted 1 light(s)", said + 1), std::string::npos) << c.output;
+        EXPECT_EQ(c.output.find("from the bake cache") != std::string::npos, run_index == 1) << c.output;
+        std::ifstream cached_json(dir / "cached.json");
+        const std::string text((std::istreambuf_iterator<char>(cached_json)), {});
+        const size_t at = text.find("\"predicted_error\": ");
+        ASSERT_NE(at, std::string::npos) << text;
+        predicted[run_index] = text.substr(at, text.find(',', at) - at);
+    }
+    EXPECT_EQ(predicted[0], predicted[1]);
     std::ifstream in(dir / "sun.json");
     const std::string json((std::istreambuf_iterator<char>(in)), {});
     EXPECT_NE(json.find("\"environment_lights\": ["), std::string::npos) << json;

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 #include <facet/core/brdf_model.h>
 #include <facet/reference/final_image_truth.h>
@@ -48,6 +49,22 @@ struct FinalImageAccuracy {
     size_t pixels = 0;           // pixels measured (all groups)
     double truth_seconds = 0;    // wall time of the truth sums
 };
+
+// The measurement in two steps, for several renders of one frame (the same views, other
+// shading methods): the eligible pixels and their truth once, then each render's errors.
+struct FinalImageTruth {
+    uint32_t width = 0, height = 0;
+    std::vector<size_t> index;      // the pixels measured: y * width + x
+    std::vector<int> group;         // each one's group (band-major, as FinalImageAccuracy::groups)
+    std::vector<double> luminance;  // each one's truth, luminance x intensity
+    double seconds = 0;             // wall time of the truth sums
+};
+// Throws std::invalid_argument when an image's size is not width x height x 4.
+FinalImageTruth final_image_truth(const FinalImageViews& views, const Vec3& eye, const TexelLights& env, BrdfModel model,
+                                  const AccuracySettings& settings = {});
+// `hdr`: a render of the frame `truth` was taken from (width x height RGBA, before
+// exposure); throws std::invalid_argument when its size differs.
+FinalImageAccuracy final_image_accuracy(const FinalImageTruth& truth, std::span<const float> hdr);
 
 // Throws std::invalid_argument when an image's size is not width x height x 4.
 FinalImageAccuracy final_image_accuracy(const FinalImageViews& views, const Vec3& eye, const TexelLights& env,

@@ -48,6 +48,10 @@ struct RenderJob {
     // How the environment lights surfaces (render/shading_method.h); automatic by default.
     // The older switches below add their part (to the plain split sum when automatic).
     ShadingMethod shading = ShadingMethod::automatic;
+    // The automatic choice takes the cheapest method whose predicted error is within this in
+    // every group of issue 13's measure (a fraction, 0 < target_error < 1; create() returns an
+    // Error otherwise).
+    double target_error = 0.03;
     bool extract_lights = false;  // suns and lamps out of the map, shaded as disk lights
     LightExtractionSettings extraction;  // what counts as a light (ibl/light_extraction.h)
     std::string shader_dir;       // read shaders from here (hot reload); empty: embedded (programs: FACET_SHADER_DIR)

@@ -6,10 +6,13 @@
 //   map before the bake and shaded as disk lights with the full BRDF, the rest by the
 //   split sum (ibl/light_extraction.h);
 // - lights_dominant: both;
-// - automatic: chosen per environment (RenderSession, render/render_job.h): the lights
-//   (wide regions split into several) with the dominant direction where the environment
-//   has bright regions, the dominant direction alone where it has none.
+// - automatic: chosen per environment, BRDF model and scene (RenderSession,
+//   render/render_job.h): each method the bake serves is tried on a small probe against
+//   the exact integral, and the cheapest whose worst group of issue 13's measure is
+//   within the target error wins (the most accurate when none is).
+// Cost order (the forward pass's work): split_sum < dominant < lights < lights_dominant.
 #include <optional>
+#include <vector>
 #include <string>
 #include <string_view>
 
@@ -29,10 +32,25 @@ namespace facet {
 
 // What a session shades with, and why (written into facet-render's NAME.json, shown by
 // the viewer).
+// One group of issue 13's measure (a roughness band x metal or dielectric) and the mean
+// relative error of luminance predicted for it.
+struct GroupErrorPrediction {
+    std::string group;  // "roughness [0.2,0.4) metal"
+    double error = 0;   // a fraction (0.03 = 3%)
+};
+
 struct ShadingChoice {
     ShadingMethod requested = ShadingMethod::automatic;
     ShadingMethod method = ShadingMethod::split_sum;  // never automatic
     std::string reason;
+    double target_error = 0.03;  // what the automatic choice keeps every group within (a fraction)
+    // The method's predicted error in the worst group the scene's materials reach (a
+    // fraction), that group, and every such group's: measured on a probe under this
+    // environment (render/error_prediction.h). Absent without an environment's texels
+    // (no environment, a saved bake) or when no probe pixel has light to measure.
+    std::optional<double> predicted_error;
+    std::string predicted_worst_group;
+    std::vector<GroupErrorPrediction> predicted_groups;
 };
 
 }  // namespace facet

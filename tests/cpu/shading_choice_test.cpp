@@ -1,0 +1,90 @@
+// The automatic shading choice as a pure function (render/shading_choice.h): candidates
+// with their predicted worst-group errors -> the cheapest within the target, else the
+// most accurate with a reason saying so; and the candidates a bake serves.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "render/shading_choice.h"
+
+namespace facet {
+namespace {
+
+using M = ShadingMethod;
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+TEST(ShadingChoice, CostOrderIsSplitSumDominantLightsBoth) {
+    EXPECT_LT(shading_cost_rank(M::split_sum), shading_cost_rank(M::dominant));
+    EXPECT_LT(shading_cost_rank(M::dominant), shading_cost_rank(M::lights));
+    EXPECT_LT(shading_cost_rank(M::lights), shading_cost_rank(M::lights_dominant));
+    EXPECT_THROW(shading_cost_rank(M::automatic), UsageError);
+}
+
+TEST(ShadingChoice, CheapestWithinTheTargetWins) {
+    // Given out of cost order: the order of the list must not matter.
+    const std::vector<ShadingCandidate> c = {{M::dominant, 0.021}, {M::split_sum, 0.029}};
+    const CandidatePick pick = choose_shading(c, 0.03);
+    EXPECT_EQ(c[pick.index].method, M::split_sum);
+    EXPECT_NE(pick.reason.find("predicted 2.9% <= target 3.0%"), std::string::npos) << pick.reason;
+    // A tighter target moves to the more accurate, dearer one.
+    EXPECT_EQ(c[choose_shading(c, 0.025).index].method, M::dominant);
+}
+
+TEST(ShadingChoice, ExactlyAtTheTargetIsWithin) {
+    const std::vector<ShadingCandidate> c = {{M::lights, 0.03}, {M::lights_dominant, 0.01}};
+    EXPECT_EQ(c[choose_shading(c, 0.03).index].method, M::lights);
+}
+
+TEST(ShadingChoice, NoneWithinGivesTheMostAccurateAndSaysSo) {
+    const std::vector<ShadingCandidate> c = {{M::lights, 0.081}, {M::lights_dominant, 0.063}};
+    const CandidatePick pick = choose_shading(c, 0.03);
+    EXPECT_EQ(c[pick.index].method, M::lights_dominant);
+    EXPECT_NE(pick.reason.find("predicted 6.3% > target 3.0%"), std::string::npos) << pick.reason;
+    // Equal errors: the cheaper one.
+    const std::vector<ShadingCandidate> tie = {{M::lights_dominant, 0.05}, {M::lights, 0.05}};
+    EXPECT_EQ(tie[choose_shading(tie, 0.03).index].method, M::lights);
+}
+
+TEST(ShadingChoice, UnpredictedOrInfiniteNeverCountsAsWithin) {
+    const double inf = std::numeric_limits<double>::infinity();
+    const std::vector<ShadingCandidate> c = {{M::split_sum, nan}, {M::dominant, 0.02}};
+    EXPECT_EQ(c[choose_shading(c, 0.03).index].method, M::dominant);
+    const std::vector<ShadingCandidate> bad = {{M::split_sum, inf}, {M::dominant, 0.5}};
+    EXPECT_EQ(bad[choose_shading(bad, 0.03).index].method, M::dominant);
+    // Nothing predicted at all: the cheapest, said.
+    const std::vector<ShadingCandidate> none = {{M::dominant, nan}, {M::split_sum, nan}};
+    const CandidatePick pick = choose_shading(none, 0.03);
+    EXPECT_EQ(none[pick.index].method, M::split_sum);
+    EXPECT_NE(pick.reason.find("no prediction"), std::string::npos) << pick.reason;
+    EXPECT_THROW(choose_shading({}, 0.03), UsageError);
+}
+
+TEST(ShadingChoice, DeterministicForTheSameInput) {
+    const std::vector<ShadingCandidate> c = {{M::lights, 0.0301}, {M::lights_dominant, 0.0299}};
+    const CandidatePick a = choose_shading(c, 0.03), b = choose_shading(c, 0.03);
+    EXPECT_EQ(a.index, b.index);
+    EXPECT_EQ(a.reason, b.reason);
+    EXPECT_EQ(c[a.index].method, M::lights_dominant);
+}
+
+TEST(ShadingChoice, CandidatesAreWhatTheBakeServes) {
+    ShadingChoice automatic;
+    automatic.requested = M::automatic;
+    EXPECT_EQ(shading_candidates(automatic, 2), (std::vector<M>{M::lights, M::lights_dominant}));
+    EXPECT_EQ(shading_candidates(automatic, 0), (std::vector<M>{M::split_sum, M::dominant}));
+    ShadingChoice explicit_choice;
+    explicit_choice.requested = explicit_choice.method = M::dominant;
+    EXPECT_EQ(shading_candidates(explicit_choice, 3), std::vector<M>{M::dominant});
+}
+
+TEST(ShadingChoice, ResolveCarriesTheTarget) {
+    RenderJob job;
+    job.target_error = 0.05;
+    EXPECT_EQ(resolve_shading(job).choice.target_error, 0.05);
+    EXPECT_TRUE(resolve_shading(job).job.extract_lights);  // automatic: the extraction bake
+}
+
+}  // namespace
+}  // namespace facet
