@@ -56,7 +56,7 @@ void add_render_options(cli::Parser& p) {
                                   "                          with the full BRDF (the rest goes through the split sum)")
         .flag("--multiscatter", "energy compensation for multiple scattering (Kulla-Conty; needs --env)")
         .option("--specular-dir", "mirror|dominant",
-                "IBL specular lookup along R (default) or bent towards n for rough lobes (Frostbite)")
+                "IBL specular lookup along R (default) or three lookups fitted to the true lobe (render/specular_lobes.h)")
         .option("--ibl-intensity", "S", "scale of the image-based lighting (default 1)")
         .option("--env-width", "N", "width of a built-in environment (default 1024)")
         .option("--max-env-width", "N", "downsample wider environment files to N x N/2 while reading them (default " +

@@ -1,7 +1,8 @@
 #pragma once
 // How the forward pass lights surfaces with the environment (issue 13's methods):
 // - split_sum: the prefiltered cube along R times the LUT (Karis 2013);
-// - dominant: the same with the lookup bent towards n for rough lobes;
+// - dominant: the same with three lookups fitted to the true lobe, which leans towards n and
+//   stretches at n.v < 1 (render/specular_lobes.h);
 // - lights: bright regions (suns, lamps, softboxes, a low sun's glow) taken out of the
 //   map before the bake and shaded as disk lights with the full BRDF, the rest by the
 //   split sum (ibl/light_extraction.h);
