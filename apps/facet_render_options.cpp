@@ -8,6 +8,7 @@
 #include <facet/render/views.h>
 #include "render_options.h"
 #include <facet/scene/builtin_scenes.h>
+#include <facet/scene/gltf_loader.h>
 #include "shader_cache.h"
 
 namespace facet {
@@ -18,14 +19,22 @@ namespace fs = std::filesystem;
 
 constexpr const char* program = "facet-render";
 
+std::string extension_list() {
+    std::string out;
+    for (const std::string& name : gltf_supported_extensions()) out += (out.empty() ? "" : ", ") + name;
+    return out;
+}
+
 cli::Parser make_parser() {
     cli::Parser p(program, "--out FILE.png|FILE.exr [--model PATH|builtin:NAME] [--env PATH|builtin:NAME|none] [options]",
                   "Renders a glTF model (.gltf, .glb) or a built-in scene (" + builtin_scene_names() +
                       ")\nunder an environment (.hdr, .exr; " + builtin_environment_names() +
-                      "; none) with the forward PBR pass:\nCook-Torrance with GGX, Fresnel-Schlick and Smith/Schlick-GGX, "
-                      "split-sum image-based\nlighting baked on the fly, 4x MSAA. A .png is tone-mapped and gamma-encoded; "
-                      "a .exr is\nlinear radiance with the exposure applied. NAME.json beside it records the camera,\n"
-                      "inputs and their hashes so the image can be reproduced.");
+                      "; none) with the forward PBR pass:\nglTF 2.0's BRDF (or the thesis' Cook-Torrance, --brdf), "
+                      "image-based lighting baked on the\nfly (or from the bake cache), 4x MSAA. A .png is tone-mapped and "
+                      "gamma-encoded; a .exr is\nlinear radiance with the exposure applied. NAME.json beside it records the "
+                      "camera,\ninputs and their hashes so the image can be reproduced.\nglTF extensions read: " +
+                      extension_list() +
+                      ";\nanother in extensionsRequired is an error naming it, one only in extensionsUsed a warning.");
     p.option("--out", "FILE", "output image, .png or .exr (required)")
         .option("--aov", "LIST", "also write NAME.<view>.exr for each view: all or " + view_names());
     add_render_options(p);

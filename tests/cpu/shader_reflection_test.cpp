@@ -109,7 +109,8 @@ TEST(ShaderReflection, ForwardVertexAndFragmentMergeIntoOneLayout) {
                      {8, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                      {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                      {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                     {11, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
+                     {11, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                     {12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},  // the fitted lookups' table
                     "forward");
     EXPECT_EQ(merged->push_constant_bytes, 8u);  // uint instance, uint material
 }
