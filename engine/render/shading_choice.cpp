@@ -133,7 +133,8 @@ Status choose_session_shading(RenderSession::State& s, const SayFn& say) {
     const BakeMetadata& m = s.baked->metadata();
     const size_t lights = s.baked->lights().size();
     const bool texels = s.env && !s.env->image.rgba.empty() && s.job.ibl_intensity > 0;
-    if (!texels) {
+    const bool wanted = r.choice.requested == ShadingMethod::automatic || s.job.predict_named_method;
+    if (!texels || !wanted) {
         finish_shading_choice(r, lights, m.extracted_power_fraction);
     } else {
         const std::vector<ShadingMethod> methods = shading_candidates(r.choice, lights);

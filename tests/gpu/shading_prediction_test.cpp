@@ -39,6 +39,7 @@ ShadingChoice predicted_against_measured(ShadingMethod shading, BrdfModel model)
     job.frame.brdf = model;
     job.frame.views = {View::normal, View::position, View::basecolor, View::metallic, View::roughness};
     job.shading = shading;
+    job.predict_named_method = true;
     auto session = RenderSession::create(test::gpu(), job);
     if (!session) {
         ADD_FAILURE() << session.error().message;

@@ -212,11 +212,11 @@ TEST(FacetRender, ExtractLightsFindsTheBuiltinSun) {
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_EQ(r.output.find("Validation"), std::string::npos) << r.output;
     // Said once whichever way the bake came: baked fresh, then from the bake cache. The
-    // shading's predicted error is kept beside the bake: the second run reads it back,
-    // the same to the last digit.
+    // automatic shading's predicted error is kept beside the bake: the second run reads it
+    // back, the same to the last digit.
     std::string predicted[2];
     for (int run_index = 0; run_index < 2; ++run_index) {
-        Ran c = run("--model builtin:sphere --env builtin:sky --extract-lights --bake-cache " + dir / "cache" + fast +
+        Ran c = run("--model builtin:sphere --env builtin:sky --bake-cache " + dir / "cache" + fast +
                     " --out " + dir / "cached.png");
         ASSERT_EQ(c.status, 0) << c.output;
         EXPECT_NE(c.output.find(run_index == 0 ? "bake cache: stored" : "bake cache: using"), std::string::npos) << c.output;

@@ -52,6 +52,9 @@ struct RenderJob {
     // every group of issue 13's measure (a fraction, 0 < target_error < 1; create() returns an
     // Error otherwise).
     double target_error = 0.03;
+    // Predict a method named explicitly too (a probe render and the truth at 480 pixels: about
+    // 0.3 s per session on lavapipe); the automatic choice always predicts.
+    bool predict_named_method = false;
     bool extract_lights = false;  // suns and lamps out of the map, shaded as disk lights
     LightExtractionSettings extraction;  // what counts as a light (ibl/light_extraction.h)
     std::string shader_dir;       // read shaders from here (hot reload); empty: embedded (programs: FACET_SHADER_DIR)
