@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "scene/gltf_accessors.h"
 #include "scene/gltf_decompress.h"
 #include "scene/gltf_errors.h"
 
@@ -27,18 +28,6 @@ size_t components_of(int type) {
     case TINYGLTF_TYPE_VEC2: return 2;
     case TINYGLTF_TYPE_VEC3: return 3;
     case TINYGLTF_TYPE_VEC4: return 4;
-    default: return 0;
-    }
-}
-
-size_t bytes_of(int component_type) {
-    switch (component_type) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
     default: return 0;
     }
 }
@@ -116,7 +105,7 @@ void decode_attribute(tinygltf::Model& model, const draco::Mesh& mesh, const std
         unique_id <= std::numeric_limits<uint32_t>::max() ? mesh.GetAttributeByUniqueId(uint32_t(unique_id)) : nullptr;
     if (!attribute) fail(name + ": the stream has no attribute " + std::to_string(unique_id));
     const size_t components = components_of(accessor.type);
-    const size_t component_bytes = bytes_of(accessor.componentType);
+    const size_t component_bytes = component_size(accessor.componentType);
     if (components == 0 || component_bytes == 0) fail(name + ": accessor has a type Draco cannot fill");
     if (attribute->num_components() != components)
         fail(name + ": the stream's attribute has " + std::to_string(attribute->num_components()) +
@@ -160,7 +149,7 @@ void decode_indices(tinygltf::Model& model, tinygltf::Primitive& primitive, cons
     }
     if (mesh.num_points() > 0 && mesh.num_points() - 1 > largest)
         fail(name + ": " + std::to_string(mesh.num_points()) + " points do not fit the accessor's component type");
-    const uint64_t size = count * bytes_of(accessor.componentType);
+    const uint64_t size = count * component_size(accessor.componentType);
     state.budget.take(size, name);
     std::vector<uint8_t> bytes(static_cast<size_t>(size));
     if (largest == 0xff) write_indices<uint8_t>(mesh, bytes);
