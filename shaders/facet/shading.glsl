@@ -326,14 +326,12 @@ struct FacetEnvironmentLight {
 };
 
 // Split-sum image-based lighting, occlusion applied. irradiance_map holds E / pi,
-// specular_map the GGX-prefiltered radiance with `specular_levels` levels, lut
-// facet_brdf_lut's value. multiscatter adds Kulla and Conty's multiple-scattering lobe (the
-// LUT's third channel); `fitted` reads the three lookups fitted to the true lobe
-// (facet_specular_lookups, lobe_table: include/facet/render/specular_lobes.h) instead of one
-// along R (then lobe_table is not read).
+// specular_map the GGX-prefiltered radiance read by the lookups k (facet_specular_lookups:
+// one along R, or three fitted to the true lobe), lut facet_brdf_lut's value. multiscatter
+// adds Kulla and Conty's multiple-scattering lobe (the LUT's third channel).
 FacetEnvironmentLight facet_environment_light(FacetSurface s, vec3 v, float NdotV, vec4 lut, samplerCube irradiance_map,
-                                              samplerCube specular_map, float specular_levels, float intensity,
-                                              bool multiscatter, sampler2D lobe_table, bool fitted) {
+                                              samplerCube specular_map, float intensity, bool multiscatter,
+                                              FacetSpecularLookups k) {
     FacetEnvironmentLight env;
     env.specular = vec3(0.0);
     // The split sum's directional albedo E = F0 A + B (Karis 2013) and the diffuse
@@ -362,7 +360,6 @@ FacetEnvironmentLight facet_environment_light(FacetSurface s, vec3 v, float Ndot
     // royal_esplanade and empty_warehouse_01; Filament's mix(R, n, alpha^2), a lookup pointed
     // at the lobe's centroid, level blending linear in alpha^2, 11 levels instead of 6 and 8
     // filtered importance samples of the true BRDF per pixel were each worse somewhere.
-    FacetSpecularLookups k = facet_specular_lookups(s, v, NdotV, specular_levels, lobe_table, fitted);
     env.prefiltered = vec3(0.0);
     for (int i = 0; i < 3; ++i)
         if (k.weight[i] > 0.0) env.prefiltered += k.weight[i] * textureLod(specular_map, k.direction[i], k.lod[i]).rgb;
@@ -370,6 +367,15 @@ FacetEnvironmentLight facet_environment_light(FacetSurface s, vec3 v, float Ndot
     env.diffuse = kd * s.albedo * env.irradiance * s.occlusion;
     env.specular += env.prefiltered * E * s.occlusion;
     return env;
+}
+
+// The same with the lookups made here (facet_specular_lookups): one along R, or the three
+// fitted ones read from lobe_table when `fitted`.
+FacetEnvironmentLight facet_environment_light(FacetSurface s, vec3 v, float NdotV, vec4 lut, samplerCube irradiance_map,
+                                              samplerCube specular_map, float specular_levels, float intensity,
+                                              bool multiscatter, sampler2D lobe_table, bool fitted) {
+    return facet_environment_light(s, v, NdotV, lut, irradiance_map, specular_map, intensity, multiscatter,
+                                   facet_specular_lookups(s, v, NdotV, specular_levels, lobe_table, fitted));
 }
 
 #endif

@@ -170,9 +170,10 @@ void main() {
 #else
     const bool dominant_direction = false;
 #endif
-    // The disks' specular counts for the share of the lookups read from levels without them.
-    float disk_specular_weight = facet_disk_specular_weight(
-        facet_specular_lookups(s, v, NdotV, specular_levels, specular_lobes, dominant_direction), frame.ibl.z);
+    // The lookups of the prefiltered cube, made once: the environment reads them, and the
+    // disks' specular counts for the share of them read from levels without the lights.
+    FacetSpecularLookups lookups = facet_specular_lookups(s, v, NdotV, specular_levels, specular_lobes, dominant_direction);
+    float disk_specular_weight = facet_disk_specular_weight(lookups, frame.ibl.z);
     for (uint i = 0u; i < frame.counts.y; ++i) {
         vec3 disk_diffuse, disk_specular;
         facet_disk_light(s, v, NdotV, unpack_disk_light(lights[frame.counts.x + i]), lut, disk_diffuse, disk_specular);
@@ -184,8 +185,8 @@ void main() {
 #else
     const bool multiscatter = false;
 #endif
-    FacetEnvironmentLight env = facet_environment_light(s, v, NdotV, lut, irradiance_map, specular_map, specular_levels,
-                                                        frame.ibl.x, multiscatter, specular_lobes, dominant_direction);
+    FacetEnvironmentLight env = facet_environment_light(s, v, NdotV, lut, irradiance_map, specular_map, frame.ibl.x,
+                                                        multiscatter, lookups);
     diffuse += env.diffuse;
     specular += env.specular;
     irradiance = env.irradiance;
