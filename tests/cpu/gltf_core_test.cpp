@@ -44,14 +44,6 @@ Scene load_ok(const std::string& path, int scene = -1) {
     return loaded.ok() ? std::move(loaded).value() : Scene{};
 }
 
-void expect_error(const std::string& path, const std::string& phrase) {
-    Result<Scene> scene = load_gltf(path);
-    ASSERT_FALSE(scene.ok()) << path;
-    const std::string& message = scene.error().message;
-    EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << message;
-    EXPECT_NE(message.find(phrase), std::string::npos) << "expected '" << phrase << "' in: " << message;
-}
-
 void expect_near(glm::vec4 a, glm::vec4 b, float tolerance = 1e-6f) {
     for (int i = 0; i < 4; ++i) EXPECT_NEAR(a[i], b[i], tolerance) << "component " << i;
 }

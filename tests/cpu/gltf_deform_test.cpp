@@ -19,14 +19,6 @@ void expect_near(glm::vec3 actual, glm::vec3 expected, float tolerance = 1e-5f) 
     for (int i = 0; i < 3; ++i) EXPECT_NEAR(actual[i], expected[i], tolerance) << "component " << i;
 }
 
-void expect_error(const std::string& path, const std::string& phrase) {
-    Result<Scene> scene = load_gltf(path);
-    ASSERT_FALSE(scene.ok()) << path;
-    const std::string& message = scene.error().message;
-    EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << message;
-    EXPECT_NE(message.find(phrase), std::string::npos) << "expected '" << phrase << "' in: " << message;
-}
-
 // Two bones along +Y: joint A at the origin, joint B one metre up, rotated 90 degrees
 // about +Z. Vertices at x = 0.5 and heights 0, 1, 2: bound to A, half and half, to B.
 struct TwoBones {

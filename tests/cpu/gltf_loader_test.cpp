@@ -15,12 +15,14 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <facet/scene/gltf_loader.h>
+#include "support/gltf_files.h"
 #include "scene/tangents.h"
 
 namespace facet {
 namespace {
 
 namespace fs = std::filesystem;
+using test::expect_error;
 
 const std::string kModels = std::string(FACET_SHARED_DATA_DIR) + "/models";
 
@@ -540,14 +542,6 @@ TEST(Tangents, AreaWeightedNormals) {
 }
 
 // ---------------------------------------------------------------- bad inputs
-
-void expect_error(const std::string& path, const std::string& phrase) {
-    Result<Scene> scene = load_gltf(path);
-    ASSERT_FALSE(scene.ok()) << path;
-    const std::string& message = scene.error().message;
-    EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << message;
-    EXPECT_NE(message.find(phrase), std::string::npos) << "expected '" << phrase << "' in: " << message;
-}
 
 // Writes the triangle (JSON edited by `edit`) and expects loading it to fail.
 template <class Edit>

@@ -3,11 +3,15 @@
 // .bin in a temporary folder, built accessor by accessor.
 #include <unistd.h>
 
+#include <gtest/gtest.h>
+
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
+
+#include <facet/scene/gltf_loader.h>
 
 namespace facet::test {
 
@@ -81,5 +85,14 @@ struct GltfBuilder {
         return dir.file(name + ".gltf");
     }
 };
+
+// Loading `path` fails with one message that starts with the path and names `phrase`.
+inline void expect_error(const std::string& path, const std::string& phrase) {
+    Result<Scene> scene = load_gltf(path);
+    ASSERT_FALSE(scene.ok()) << path;
+    const std::string& message = scene.error().message;
+    EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << message;
+    EXPECT_NE(message.find(phrase), std::string::npos) << "expected '" << phrase << "' in: " << message;
+}
 
 }  // namespace facet::test
