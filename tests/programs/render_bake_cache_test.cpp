@@ -34,11 +34,15 @@ std::string read_text(const fs::path& path) {
     return {std::istreambuf_iterator<char>(in), {}};
 }
 
+// The cache's one bake entry (the automatic method's predictions sit beside it in
+// prediction-HASH directories; temporaries start with a dot). Empty if none or several.
 fs::path only_entry(const fs::path& cache) {
-    fs::path entry;
-    for (const auto& e : fs::directory_iterator(cache))
-        if (e.is_directory() && e.path().filename().string()[0] != '.') entry = e.path();
-    return entry;
+    std::vector<fs::path> entries;
+    for (const auto& e : fs::directory_iterator(cache)) {
+        const std::string name = e.path().filename().string();
+        if (e.is_directory() && name[0] != '.' && name.rfind("prediction-", 0) != 0) entries.push_back(e.path());
+    }
+    return entries.size() == 1 ? entries[0] : fs::path();
 }
 
 std::vector<unsigned char> pixels(const fs::path& path) {
