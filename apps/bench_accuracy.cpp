@@ -45,7 +45,36 @@ struct Measured {
     test::FinalImageAccuracy accuracy;
     double forward_ms = 0;
     ShadingChoice shading;  // the session's method and its predicted errors (for the frame's model)
+    std::optional<test::FinalImageAccuracy> compared;  // --compare's frame against the same truth
+    double compared_forward_ms = 0;
 };
+
+// A session's frames for one job: the last frame and the forward pass's median wall time.
+struct Frames {
+    std::unique_ptr<RenderSession> session;
+    RenderedImages frame;
+    double forward_ms = 0;
+};
+
+Result<Frames> render_frames(Context& context, const RenderJob& job, int runs) {
+    auto session = RenderSession::create(context, job, [](const std::string& line) {
+        std::fprintf(stderr, "%s:   %s\n", program, line.c_str());
+    });
+    if (!session) return session.error();
+    Frames f{std::move(*session), {}, 0};
+    std::vector<double> forward_ms;
+    for (int r = 0; r < runs; ++r) {
+        auto images = f.session->render_frame(true);
+        if (!images) return images.error();
+        double ms = 0;
+        for (const PassTiming& t : images->pass_wall)
+            if (t.name == "forward") ms += t.time_ms;
+        forward_ms.push_back(ms);
+        f.frame = std::move(images).value();
+    }
+    f.forward_ms = median(forward_ms);
+    return f;
+}
 
 // The session's predicted error of a group ("roughness [0.2,0.4) metal"); negative: none.
 double predicted_of(const ShadingChoice& c, const std::string& group) {
@@ -83,7 +112,16 @@ std::string json_of(const std::vector<Measured>& results, const AccuracyOptions&
             if (predicted >= 0 && m.model == o.job.frame.brdf) j.value("predicted_mean_rel", predicted);
             j.end_object();
         }
-        j.end_array().end_object();
+        j.end_array();
+        if (m.compared) {
+            j.begin_object("compared").value("shading", shading_method_name(*o.compare));
+            j.value("forward_ms", m.compared_forward_ms).value("worst_mean_rel", m.compared->worst_mean_rel);
+            j.begin_array("groups");
+            for (const test::GroupError& g : m.compared->groups)
+                j.begin_object().value("group", test::group_name(g)).value("mean_rel", g.mean_rel).end_object();
+            j.end_array().end_object();
+        }
+        j.end_object();
     }
     j.end_array().end_object();
     return j.str();
@@ -144,31 +182,29 @@ int run_accuracy(int argc, char** argv) {
         job.env = file.string();
         job.frame.skybox = false;
         job.frame.views = {View::normal, View::position, View::basecolor, View::metallic, View::roughness};
-        auto session = RenderSession::create(context, job, [](const std::string& line) {
-            std::fprintf(stderr, "%s:   %s\n", program, line.c_str());
-        });
+        auto rendered = render_frames(context, job, o.runs);
         std::error_code ec;
-        if (!session) {
+        if (!rendered) {
             fs::remove(file, ec);
-            return fail(label + ": " + session.error().message);
+            return fail(label + ": " + rendered.error().message);
         }
-        std::vector<double> forward_ms;
-        std::optional<RenderedImages> frame;
-        for (int r = 0; r < o.runs; ++r) {
-            auto images = (*session)->render_frame(true);
-            if (!images) {
+        std::optional<Frames> compared;
+        if (o.compare) {
+            RenderJob other = job;
+            other.shading = *o.compare;
+            std::fprintf(stderr, "%s:   compared with %s\n", program, shading_method_name(*o.compare));
+            auto r = render_frames(context, other, o.runs);
+            if (!r) {
                 fs::remove(file, ec);
-                return fail(label + ": " + images.error().message);
+                return fail(label + ": " + shading_method_name(*o.compare) + ": " + r.error().message);
             }
-            double ms = 0;
-            for (const PassTiming& t : images->pass_wall)
-                if (t.name == "forward") ms += t.time_ms;
-            forward_ms.push_back(ms);
-            frame = std::move(images).value();
+            compared = std::move(*r);
         }
+        const auto& session = rendered->session;
+        std::optional<RenderedImages> frame = std::move(rendered->frame);
         if (o.reference) {
             std::fprintf(stderr, "%s:   reference mode\n", program);
-            auto reference = (*session)->render_reference(ReferenceSettings{});
+            auto reference = session->render_reference(ReferenceSettings{});
             if (!reference) {
                 fs::remove(file, ec);
                 return fail(label + ": reference mode: " + reference.error().message);
@@ -184,7 +220,7 @@ int run_accuracy(int argc, char** argv) {
                                     view_of(*frame, View::basecolor),
                                     view_of(*frame, View::metallic),
                                     view_of(*frame, View::roughness)};
-        const glm::vec3 eye = (*session)->camera().position;
+        const glm::vec3 eye = session->camera().position;
         test::AccuracySettings settings;
         settings.intensity = job.ibl_intensity;
         settings.max_pixels = o.max_pixels;
@@ -192,9 +228,15 @@ int run_accuracy(int argc, char** argv) {
         for (BrdfModel model : o.truth_models) {
             std::fprintf(stderr, "%s:   truth: %s model, %u texels, up to %u pixels\n", program, brdf_model_name(model),
                          texels.w * texels.h, o.max_pixels);
-            Measured m{label, model, texels.w, texels.h, {}, median(forward_ms), (*session)->shading()};
+            Measured m{label, model, texels.w, texels.h, {}, rendered->forward_ms, session->shading(), {}, 0};
             try {
-                m.accuracy = test::final_image_accuracy(views, {eye.x, eye.y, eye.z}, lights, model, settings);
+                const test::FinalImageTruth truth =
+                    test::final_image_truth(views, {eye.x, eye.y, eye.z}, lights, model, settings);
+                m.accuracy = test::final_image_accuracy(truth, frame->hdr);
+                if (compared) {
+                    m.compared = test::final_image_accuracy(truth, compared->frame.hdr);
+                    m.compared_forward_ms = compared->forward_ms;
+                }
             } catch (const std::invalid_argument& e) {
                 return fail(label + ": " + e.what());
             }
@@ -215,6 +257,12 @@ int run_accuracy(int argc, char** argv) {
                 std::printf("\n  predicted worst: %s, mean %.2f%% (target %.2f%%)\n",
                             m.shading.predicted_worst_group.c_str(), 100 * *m.shading.predicted_error,
                             100 * m.shading.target_error);
+            }
+            if (m.compared) {
+                std::printf("  compared with %s (forward pass %.2f ms), mean err%% per group:",
+                            shading_method_name(*o.compare), m.compared_forward_ms);
+                for (const test::GroupError& g : m.compared->groups) std::printf(" %.2f", 100 * g.mean_rel);
+                std::printf("\n");
             }
             std::fflush(stdout);
             results.push_back(std::move(m));

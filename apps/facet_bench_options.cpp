@@ -105,7 +105,10 @@ std::optional<AccuracyOptions> parse_accuracy_options(int argc, char** argv) {
         .option("--json", "FILE", "accuracy: also write the tables as JSON")
         .flag("--reference", "accuracy: measure the reference mode's image (Monte Carlo, 1% noise)")
         .option("--truth-brdf", "gltf|thesis[,...]",
-                "accuracy: the BRDF model(s) of the truth (default: the frame's, --brdf)");
+                "accuracy: the BRDF model(s) of the truth (default: the frame's, --brdf)")
+        .option("--compare", "METHOD",
+                "accuracy: also render each environment with this shading method (e.g. split-sum) and\n"
+                "measure it against the same truth");
     const cli::Parsed a = parser.parse(argc, argv);
     if (parser.answered_help_or_version(a, FACET_VERSION)) return std::nullopt;
     if (a.positional.size() != 1 || a.positional[0] != "accuracy")
@@ -149,6 +152,13 @@ std::optional<AccuracyOptions> parse_accuracy_options(int argc, char** argv) {
     }
     if (o.truth_models.empty()) o.truth_models = {o.job.frame.brdf};
     if (!o.job.ibl_dir.empty()) throw std::invalid_argument("--ibl: accuracy bakes each --env itself");
+    if (a.has("--compare")) {
+        o.compare = parse_shading_method(a.get("--compare"));
+        if (!o.compare)
+            throw std::invalid_argument("--compare: expected one of " + std::string(shading_method_names()) + ", got '" +
+                                        a.get("--compare") + "'");
+        if (o.reference) throw std::invalid_argument("--compare measures frames: leave out --reference");
+    }
     return o;
 }
 

@@ -57,6 +57,7 @@ struct AccuracyOptions {
     std::string json;               // also write the tables here
     bool reference = false;         // measure the reference mode's image instead of the frame's
     std::vector<BrdfModel> truth_models;  // default: the frame's (job.frame.brdf)
+    std::optional<ShadingMethod> compare; // also render with this method, against the same truth
 };
 // Nothing when --help or --version was answered; throws std::invalid_argument naming
 // the option. argv[1] is "accuracy".

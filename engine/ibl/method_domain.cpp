@@ -30,6 +30,7 @@ EnvironmentStats environment_stats(std::span<const float> rgba, uint32_t width, 
     find.max_lights = 64;
     find.max_solid_angle = 0.05;
     find.min_power_fraction = 0.005;
+    find.max_residual_range = 0;  // compact regions only
     const LightExtraction lights = extract_lights(rgba, width, height, find);
     stats.compact_light_power = lights.extracted_power_fraction;
     for (const DiskLight& l : lights.lights) stats.widest_light_radius = std::max(stats.widest_light_radius, l.angular_radius);

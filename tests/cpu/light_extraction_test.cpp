@@ -2,6 +2,7 @@
 // a sun, and on the shared environments (what it finds is printed).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -40,6 +41,57 @@ TEST(LightExtraction, LeavesASkyWithoutASunAlone) {
     EXPECT_TRUE(extract_lights(white.rgba, white.w, white.h).lights.empty());
     const test::Equirect dim_sun = test::sun_sky(256, 128, 5.0, 2.0, 30, 0);  // barely brighter than the sky
     EXPECT_TRUE(extract_lights(dim_sun.rgba, dim_sun.w, dim_sun.h).lights.empty());
+}
+
+// Luminous power of an equirect map (luminance x texel solid angle), in double.
+double power(const std::vector<float>& rgba, uint32_t w, uint32_t h) {
+    double sum = 0;
+    for (uint32_t y = 0; y < h; ++y) {
+        const double omega = (2 * pi / w) * (pi / h) * std::cos(((y + 0.5) / h - 0.5) * pi);
+        for (uint32_t x = 0; x < w; ++x) {
+            const float* t = &rgba[(size_t(y) * w + x) * 4];
+            sum += (0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2]) * omega;
+        }
+    }
+    return sum;
+}
+
+// A softbox too wide for the lights left (20 degrees across, one light allowed: the region
+// pass leaves it in the map) becomes the excess over 100x the median: one disk of the
+// excess's power around the softbox's centre with the softbox's own radius (a uniform cap's
+// spread), the residual clamped to that level, no power lost or made; a few isolated bright
+// texels (each far under 2% of the power) stay in the map.
+TEST(LightExtraction, TheExcessOfAWideSoftboxBecomesOneDiskOfItsPowerAndSpread) {
+    const double diameter = 20.0, elevation = 25.0, azimuth = -60.0, radiance = 5000;
+    test::Equirect sky = test::sun_sky(512, 256, radiance, diameter, elevation, azimuth);
+    for (uint32_t x : {40u, 200u, 300u}) sky.rgba[(size_t(200) * sky.w + x) * 4 + 1] = 400.0f;  // isolated, green
+    LightExtractionSettings one;
+    one.max_lights = 1;
+    const LightExtraction e = extract_lights(sky.rgba, sky.w, sky.h, one);
+    ASSERT_EQ(e.lights.size(), 1u);
+    EXPECT_FALSE(e.notes.empty()) << "the region pass names the softbox it leaves";
+    const DiskLight& box = e.lights[0];
+    const double el = elevation * pi / 180, az = azimuth * pi / 180;
+    const glm::dvec3 want(std::cos(el) * std::cos(az), std::sin(el), std::cos(el) * std::sin(az));
+    EXPECT_GT(glm::dot(glm::dvec3(box.direction), want), std::cos(0.2 * pi / 180)) << "within 0.2 degree";
+    EXPECT_NEAR(box.angular_radius * 180 / pi, diameter / 2, 0.2) << "the cap's spread is the softbox's";
+    std::vector<float> sorted;
+    for (size_t i = 0; i < sky.rgba.size(); i += 4) sorted.push_back(0.2126f * sky.rgba[i] + 0.7152f * sky.rgba[i + 1] + 0.0722f * sky.rgba[i + 2]);
+    std::nth_element(sorted.begin(), sorted.begin() + long(sorted.size() / 2), sorted.end());
+    const double level = 100.0 * sorted[sorted.size() / 2];
+    double brightest = 0;  // but for the isolated texels
+    for (size_t i = 0; i < e.residual.size(); i += 4)
+        if (e.residual[i + 1] != 400.0f) brightest = std::max(brightest, 0.2126 * e.residual[i] + 0.7152 * e.residual[i + 1] + 0.0722 * e.residual[i + 2]);
+    EXPECT_NEAR(brightest, level, 1e-3 * level) << "the residual stops at 100x the median";
+    const double disk_power = double(0.2126f * box.radiance.x + 0.7152f * box.radiance.y + 0.0722f * box.radiance.z) *
+                              box.solid_angle;
+    const double whole = power(sky.rgba, sky.w, sky.h);
+    EXPECT_NEAR(power(e.residual, sky.w, sky.h) + disk_power, whole, 1e-5 * whole) << "power kept";
+    EXPECT_NEAR(disk_power / whole, box.power_fraction, 1e-5);
+    for (uint32_t x : {40u, 200u, 300u}) EXPECT_EQ(e.residual[(size_t(200) * sky.w + x) * 4 + 1], 400.0f);
+    // Off, the softbox stays in the map.
+    one.max_residual_range = 0;
+    EXPECT_TRUE(extract_lights(sky.rgba, sky.w, sky.h, one).lights.empty());
 }
 
 TEST(LightExtraction, SharedEnvironments) {

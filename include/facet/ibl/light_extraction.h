@@ -3,7 +3,9 @@
 // taken out of the map (their texels filled with the surrounding sky) and returned as
 // disk lights of the same solid angle and power, to be shaded with the full BRDF, while
 // the remaining smooth map goes through the split sum. This cuts the split sum's error
-// where it is worst: rough surfaces under a sun (its n = v = R assumption).
+// where it is worst: rough surfaces under a sun (its n = v = R assumption). What stays over
+// max_residual_range times the median after that (a studio's softboxes, too wide for the
+// lights left, and their halo) becomes the remaining lights as caps of its power and spread.
 #include <cstdint>
 #include <span>
 #include <string>
@@ -15,7 +17,7 @@ namespace facet {
 
 struct DiskLight {
     glm::vec3 direction{0.0f, 1.0f, 0.0f};  // towards the light (unit)
-    float angular_radius = 0.0f;            // radians; the cap has the region's solid angle
+    float angular_radius = 0.0f;            // radians: the region's solid angle, or the excess's spread
     glm::vec3 radiance{0.0f};               // uniform over the cap: power / solid angle
     float solid_angle = 0.0f;               // steradians
     uint32_t texels = 0;
@@ -30,6 +32,12 @@ struct LightExtractionSettings {
     double max_region_solid_angle = 0.3; // wider regions are split into lights of max_solid_angle each, up to this
     double min_power_fraction = 0.02;     // smaller lights stay in the map
     uint32_t max_lights = 8;
+    // After the regions: where the map's peak is still over this many times its median (a
+    // studio's softboxes and their halo, spread over more than one region), the luminance
+    // above that level, wherever it lies, becomes the lights still free: pieces of at least
+    // max_solid_angle, each a disk of the piece's power, centroid and angular spread (the
+    // residual keeps the texels' colour, clamped to the level). 0 turns this off.
+    double max_residual_range = 100.0;
 };
 
 struct LightExtraction {
