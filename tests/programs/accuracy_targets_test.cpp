@@ -99,6 +99,15 @@ void check_targets(const std::string& brdf) {
     }
 }
 
+// --compare names a shading method; anything else is a usage error naming it (exit 2).
+TEST(AccuracyTargets, CompareTakesAShadingMethod) {
+    for (const char* bad : {"--compare frobnicate", "--compare split-sum --reference"}) {
+        const facet::test::Ran r = facet::test::run_command(std::string(FACET_BENCH_PATH) + " accuracy " + bad);
+        EXPECT_EQ(r.status, 2) << bad << "\n" << r.output;
+        EXPECT_NE(r.output.find("--compare"), std::string::npos) << r.output;
+    }
+}
+
 TEST(AccuracyTargets, GltfModelEveryGroupWithinItsTarget) { check_targets("gltf"); }
 
 TEST(AccuracyTargets, ThesisModelEveryGroupWithinItsTarget) { check_targets("thesis"); }
