@@ -200,7 +200,8 @@ struct FacetDiskLight {
 // over N directions spread evenly over it (uniform in cos, golden-angle spiral), N as the
 // lobe needs: one (the cap as a point source of its power) where the specular lobe is at
 // least four times wider than the cap, alpha >= 4 theta (D's curvature over the cap then
-// changes the sum by under 2%; the cosine lobe needs more only for caps over 0.1 radian),
+// changes the sum by under 2%; the diffuse part of a cap above the horizon is exact, one
+// cut by the horizon needs 8 directions from 0.1 radian on),
 // 8 from alpha >= theta on, else 32. Lobes much narrower than the cap cannot be
 // resolved by 32 directions: there the cap acts as a mirror image, L times the lobe's
 // albedo (the LUT's F0 A + B) where R falls inside it, faded over the lobe's width.
@@ -222,7 +223,12 @@ void facet_disk_light(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, 
     // peak) sees nothing of it. Either way the sum serves the diffuse part alone.
     bool mirror_only = alpha <= 0.25 * theta, outside = angle > theta + 8.0 * alpha;
     uint N = alpha >= 4.0 * theta || mirror_only || outside ? 1u : (alpha >= theta ? 8u : 32u);
-    if (theta > 0.1) N = max(N, 8u);
+    // A cap wholly above the horizon: its diffuse part is the exact cosine integral,
+    // pi sin^2(theta) (n.c), times the diffuse BRDF at the centre (which varies by under
+    // 1% over a cap of 0.2 radian); one cut by the horizon is summed over 8 directions or more.
+    float sin_theta = sqrt(max(0.0, 1.0 - cos_theta * cos_theta));
+    bool above = dot(s.n, c) >= sin_theta;
+    if (theta > 0.1 && !above) N = max(N, 8u);
     float omega = 2.0 * PI * (1.0 - cos_theta) / float(N);
     vec3 t = vec3(0.0), b = vec3(0.0);
     if (N > 1u) facet_tangent_frame(c, t, b);
@@ -238,6 +244,11 @@ void facet_disk_light(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, 
     }
     diffuse *= L * omega;
     sampled *= L * omega;
+    if (above) {
+        vec3 centre_diffuse, centre_specular;
+        facet_reflect_light(s, v, NdotV, c, vec3(1.0), false, centre_diffuse, centre_specular);
+        diffuse = centre_diffuse * (PI * sin_theta * sin_theta) * L;
+    }
     if (outside && !mirror_only) {
         specular = sampled;  // the one direction's specular: the lobe's far tail
         return;
