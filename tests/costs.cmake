@@ -2,12 +2,14 @@
 # only their order matters (tests/CMakeLists.txt gives them to ctest as COST). Update when
 # a test gets much longer or shorter; a test not named here counts as short.
 set(FACET_TEST_COSTS
+  Sites/InjectedFault.EveryCallFailsCleanly/OutOfDeviceMemory 126
   Repetition.HostMemoryStaysFlatOver100Cycles 100
+  Sites/InjectedFault.EveryCallFailsCleanly/DeviceLost 40
   stability_test 42
   render_ground_truth_test 39
-  FacetBench.AccuracyPrintsEveryGroupWithFiniteErrors 36
   irradiance_test 33
-  public_errors_test 31
+  public_errors_test 22
+  Sites/InjectedFault.EveryCallFailsCleanly/PipelineCreation 19
   FacetBench.SweepImageStageMeasuresEveryMethodAgainstTheTruth 30
   install.consumer_builds_and_runs 21
   LargeEnvironment.FacetBakeDownsamplesA16kFileWithinItsMemoryBudget 19
@@ -30,5 +32,6 @@ set(FACET_TEST_COSTS
   InterruptBake.DamagedShaderCacheEntriesAreRecompiledAndRewritten 7
   RenderBakeCache.TheSecondRunBakesNothingAndADamagedEntryIsRebuilt 7
   FacetBake.AccuracyBudgetPicksTheCheapestMethodThatMeetsIt 7
+  FacetBench.AccuracyPrintsEveryGroupWithFiniteErrors 6
   FacetViewer.ScriptedSessionSwitchesEverything 6
 )
