@@ -6,8 +6,9 @@ source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 install_packages "${FACET_PACKAGES[@]}" "${FACET_TEST_PACKAGES[@]}"
 build_facet -DFACET_BUILD_TESTS=ON
 (cd "$FACET_BUILD_DIR" && ctest --output-on-failure --timeout 600 -j "$FACET_JOBS" "$@")
-# Then every fuzz target for a short bounded run (FACET_FUZZ_SECONDS, default 20 s each)
-# and a replay of its regression inputs; scripts/fuzz.sh runs them longer.
+# Then every fuzz target for a short bounded run (FACET_FUZZ_SECONDS, here 10 s each unless
+# set) and a replay of its regression inputs; scripts/fuzz.sh runs them longer.
+export FACET_FUZZ_SECONDS="${FACET_FUZZ_SECONDS:-10}"
 build_fuzz
 cd "$FACET_FUZZ_BUILD_DIR"
 ctest --output-on-failure --timeout 600 -j "$FACET_JOBS" -L fuzz

@@ -48,8 +48,8 @@ struct Fault {
 const Fault kMemory{FaultSite::memory, VK_ERROR_OUT_OF_DEVICE_MEMORY, "vkAllocateMemory"};
 const Fault kDeviceLost{FaultSite::submit, VK_ERROR_DEVICE_LOST, "vkQueueSubmit2"};
 // Long enough for the set-up's real work on a loaded CPU device, short enough to wait for.
-constexpr uint64_t kFenceTimeoutMs = 3000;
-const Fault kHang{FaultSite::hang, VK_TIMEOUT, "timed out after 3000 ms"};
+constexpr uint64_t kFenceTimeoutMs = 1500;
+const Fault kHang{FaultSite::hang, VK_TIMEOUT, "timed out after 1500 ms"};
 
 std::string fault_name(const ::testing::TestParamInfo<Fault>& info) {
     switch (info.param.site) {

@@ -145,11 +145,12 @@ TEST(FacetBench, SweepImageStageMeasuresEveryMethodAgainstTheTruth) {
 // The accuracy table on a small frame: eight groups, each with pixels and finite errors,
 // for both truth models; the JSON has the same groups. Under the reference mode the
 // thesis truth and the reference renderer (the thesis' model) agree (figures measured at
-// 256 x 256: every group's mean within 1%), so the 5% bound here can fail.
+// 256 x 256: every group's mean within 1%; at the 128 x 128 used here, a third of the
+// time, within 2.6%), so the 5% bound here can fail.
 TEST(FacetBench, AccuracyPrintsEveryGroupWithFiniteErrors) {
     const std::string json = (std::filesystem::temp_directory_path() /
                               ("facet_accuracy_test_" + std::to_string(::getpid()) + ".json")).string();
-    auto [status, out] = run("accuracy --size 256x256 --env-width 128 --env builtin:sky --runs 1 --pixels 1500 "
+    auto [status, out] = run("accuracy --size 128x128 --env-width 128 --env builtin:sky --runs 1 --pixels 1500 "
                              "--truth-brdf gltf,thesis --reference --no-bake-cache --json " + json);
     ASSERT_EQ(status, 0) << out;
     EXPECT_EQ(out.find("Validation"), std::string::npos) << out;
