@@ -99,11 +99,10 @@ std::vector<std::vector<uint32_t>> split_region(const std::vector<uint32_t>& tex
 // The residual's luminance above `level` as the lights still free: its connected regions of
 // at least min_power_fraction of the whole (a softbox and its halo; scattered bright texels
 // stay in the map: one light for them all would sit between them), each split by direction
-// into pieces. A piece is a cap
-// around its power-weighted centroid whose radius gives the same mean 1 - cos(angle to the
-// centre) as the piece's power (a uniform cap of radius theta has (1 - cos theta) / 2): the
-// lobe sees the piece's power, centre and spread. Its texels keep their colour, scaled to
-// `level`.
+// into pieces. A piece is a cap around its power-weighted centroid whose radius gives the
+// same mean 1 - cos(angle to the centre) as the piece's power (a uniform cap of radius theta
+// has (1 - cos theta) / 2): the lobe sees the piece's power, centre and spread. Its texels
+// keep their colour, scaled to `level`.
 void extract_excess(LightExtraction& out, uint32_t w, uint32_t h, double level, double total_power,
                     const LightExtractionSettings& settings) {
     std::vector<float>& map = out.residual;
