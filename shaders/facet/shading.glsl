@@ -242,13 +242,16 @@ void facet_disk_light(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, 
         diffuse += d;
         sampled += sp;
     }
-    diffuse *= L * omega;
-    sampled *= L * omega;
     if (above) {
-        vec3 centre_diffuse, centre_specular;
-        facet_reflect_light(s, v, NdotV, c, vec3(1.0), false, centre_diffuse, centre_specular);
-        diffuse = centre_diffuse * (PI * sin_theta * sin_theta) * L;
+        // With one direction the sum already was the centre's; with more, one more evaluation.
+        vec3 centre_diffuse = diffuse, unused;
+        if (N > 1u) facet_reflect_light(s, v, NdotV, c, vec3(1.0), false, centre_diffuse, unused);
+        diffuse = centre_diffuse * (PI * sin_theta * sin_theta);
+    } else {
+        diffuse *= omega;
     }
+    diffuse *= L;
+    sampled *= L * omega;
     if (outside && !mirror_only) {
         specular = sampled;  // the one direction's specular: the lobe's far tail
         return;
