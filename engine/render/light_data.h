@@ -18,7 +18,7 @@ struct LightData {
     glm::vec4 position_range;   // xyz position (metres), w range (0 = infinite)
     glm::vec4 direction_type;   // xyz the direction the light travels, w the type (LightType, or 3: a disk)
     glm::vec4 color_intensity;  // rgb colour, a intensity (lux or candela; 1 for a disk's radiance)
-    glm::vec4 cone;             // spot: the cone's scale and offset; disk: cos of the radius, the radius
+    glm::vec4 cone;             // spot: the cone's scale and offset; disk: cos, radius, sin, solid angle
 };
 static_assert(sizeof(LightData) == 64, "PackedLight in shaders/render/packed_light.glsl: 4 x vec4");
 static_assert(offsetof(LightData, position_range) == 0 && offsetof(LightData, direction_type) == 16 &&
@@ -42,12 +42,16 @@ inline LightData light_data(const Light& l) {
     return d;
 }
 
-// A disk extracted from the environment: its light travels away from d.direction.
+// A disk extracted from the environment: its light travels away from d.direction (unit
+// here, so that the shaders need not normalise it). The cap's cosine, radius, sine and
+// solid angle 2 pi (1 - cos) are computed once here rather than per pixel.
 inline LightData disk_data(const DiskLight& d) {
     LightData data{};
-    data.direction_type = glm::vec4(-d.direction, kDiskLightType);
+    data.direction_type = glm::vec4(-glm::normalize(d.direction), kDiskLightType);
     data.color_intensity = glm::vec4(d.radiance, 1.0f);
-    data.cone = glm::vec4(std::cos(d.angular_radius), d.angular_radius, 0.0f, 0.0f);
+    const double theta = d.angular_radius;
+    data.cone = glm::vec4(float(std::cos(theta)), float(theta), float(std::sin(theta)),
+                          float(2.0 * 3.14159265358979323846 * (1.0 - std::cos(theta))));
     return data;
 }
 

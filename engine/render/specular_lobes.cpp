@@ -1,28 +1,35 @@
 #include <facet/render/specular_lobes.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 
 #include "render/specular_lobes_table.h"
 
 namespace facet {
 
-static_assert(kSpecularLobeTableWidth == 3 * kSpecularLobeColumns);
+static_assert(kSpecularLobeTableWidth == 2 * kSpecularLobeColumns);
 static_assert(kSpecularLobeTableHeight == kSpecularLobeModels * kSpecularLobeRows);
 
 std::vector<float> specular_lobe_table_texels() {
     std::vector<float> texels(std::size_t(kSpecularLobeTableWidth) * kSpecularLobeTableHeight * 4, 0.0f);
     for (int model = 0; model < kSpecularLobeModels; ++model)
         for (int row = 0; row < kSpecularLobeRows; ++row)
-            for (int column = 0; column < kSpecularLobeColumns; ++column)
+            for (int column = 0; column < kSpecularLobeColumns; ++column) {
+                const double theta = std::acos(0.1 * (column + 1));
+                const std::size_t y = std::size_t(model * kSpecularLobeRows + row);
+                float* directions = &texels[(y * kSpecularLobeTableWidth + std::size_t(column)) * 4];
+                float* widths = &texels[(y * kSpecularLobeTableWidth + std::size_t(kSpecularLobeColumns + column)) * 4];
                 for (int lookup = 0; lookup < 3; ++lookup) {
                     const float* e =
                         kSpecularLobeEntries[((model * kSpecularLobeRows + row) * kSpecularLobeColumns + column) * 3 + lookup];
-                    const std::size_t x = std::size_t(lookup * kSpecularLobeColumns + column);
-                    const std::size_t y = std::size_t(model * kSpecularLobeRows + row);
-                    float* t = &texels[(y * kSpecularLobeTableWidth + x) * 4];
-                    t[0] = e[0], t[1] = e[1], t[2] = e[2];
+                    const double a = std::sin(double(e[0]) * theta), b = std::sin((1.0 - double(e[0])) * theta);
+                    directions[lookup] = float(a / (a + b));
+                    widths[lookup] = e[1];
                 }
+                directions[3] = kSpecularLobeEntries[((model * kSpecularLobeRows + row) * kSpecularLobeColumns + column) * 3][2];
+                widths[3] = kSpecularLobeEntries[((model * kSpecularLobeRows + row) * kSpecularLobeColumns + column) * 3 + 1][2];
+            }
     return texels;
 }
 

@@ -17,6 +17,10 @@
 #ifndef VIEW
 #define VIEW VIEW_FINAL
 #endif
+// The disks extracted from the environment (frame.counts.y), a constant per pipeline.
+#ifndef DISK_LIGHTS
+#define DISK_LIGHTS 0
+#endif
 
 #ifdef BRDF_THESIS
 const uint brdf_model = FACET_BRDF_THESIS;
@@ -174,12 +178,21 @@ void main() {
     // disks' specular counts for the share of them read from levels without the lights.
     FacetSpecularLookups lookups = facet_specular_lookups(s, v, NdotV, specular_levels, specular_lobes, dominant_direction);
     float disk_specular_weight = facet_disk_specular_weight(lookups, frame.ibl.z);
-    for (uint i = 0u; i < frame.counts.y; ++i) {
-        vec3 disk_diffuse, disk_specular;
-        facet_disk_light(s, v, NdotV, unpack_disk_light(lights[frame.counts.x + i]), lut, disk_diffuse, disk_specular);
-        diffuse += disk_diffuse * frame.ibl.x * s.occlusion;
-        specular += disk_specular * disk_specular_weight * frame.ibl.x * s.occlusion;
+    // DISK_LIGHTS (the pipeline's count, frame.counts.y) disks, unrolled so that each reads
+    // the uniform buffer at a constant offset.
+    vec3 disk_diffuse_sum = vec3(0.0), disk_specular_sum = vec3(0.0);
+#define FACET_DISK(i)                                                                                              \
+    if (i < DISK_LIGHTS) {                                                                                         \
+        vec3 disk_diffuse, disk_specular;                                                                          \
+        facet_disk_light(s, v, NdotV, unpack_disk_light(frame.disks[i]), disk_diffuse, disk_specular);            \
+        disk_diffuse_sum += disk_diffuse;                                                                          \
+        disk_specular_sum += disk_specular;                                                                        \
     }
+    FACET_DISK(0) FACET_DISK(1) FACET_DISK(2) FACET_DISK(3) FACET_DISK(4) FACET_DISK(5) FACET_DISK(6) FACET_DISK(7)
+    FACET_DISK(8) FACET_DISK(9) FACET_DISK(10) FACET_DISK(11) FACET_DISK(12) FACET_DISK(13) FACET_DISK(14) FACET_DISK(15)
+#undef FACET_DISK
+    diffuse += disk_diffuse_sum * frame.ibl.x * s.occlusion;
+    specular += disk_specular_sum * disk_specular_weight * frame.ibl.x * s.occlusion;
 #ifdef MULTISCATTER
     const bool multiscatter = true;
 #else

@@ -15,7 +15,8 @@ struct PackedLight {
                            // the environment
     vec4 color_intensity;  // rgb colour, a intensity (lux or candela); disk: radiance x a
     vec4 cone;             // spot: x = 1 / (cos inner - cos outer), y = -cos outer * x;
-                           // disk: x = cos of the angular radius, y = the angular radius
+                           // disk: x = cos of the angular radius, y = the angular radius,
+                           // z = its sine, w = the cap's solid angle 2 pi (1 - cos)
 };
 
 FacetPunctualLight unpack_punctual_light(PackedLight light) {
@@ -32,9 +33,11 @@ FacetPunctualLight unpack_punctual_light(PackedLight light) {
 
 FacetDiskLight unpack_disk_light(PackedLight light) {
     FacetDiskLight d;
-    d.direction = -normalize(light.direction_type.xyz);
+    d.direction = -light.direction_type.xyz;  // unit (render/light_data.h)
     d.cos_radius = light.cone.x;
     d.angular_radius = light.cone.y;
+    d.sin_radius = light.cone.z;
+    d.solid_angle = light.cone.w;
     d.radiance = light.color_intensity.rgb * light.color_intensity.a;
     return d;
 }

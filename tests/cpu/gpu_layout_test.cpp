@@ -105,7 +105,8 @@ TEST(GpuLayout, ForwardConstantsMatchTheShaders) {
                    {{"view_projection", offsetof(FrameData, view_projection)},
                     {"camera_position", offsetof(FrameData, camera_position)},
                     {"ibl", offsetof(FrameData, ibl)},
-                    {"counts", offsetof(FrameData, counts)}},
+                    {"counts", offsetof(FrameData, counts)},
+                    {"disks", offsetof(FrameData, disks)}},
                    std::nullopt);
     auto vert = compile(ShaderStage::vertex, "render/forward.vert");
     expect_members(vert, "render/forward.vert", "Draw",

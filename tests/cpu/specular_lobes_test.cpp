@@ -12,6 +12,7 @@
 
 #include <facet/reference/final_image_truth.h>
 #include <facet/render/specular_lobes.h>
+#include "render/specular_lobes_table.h"
 
 namespace facet::test {
 namespace {
@@ -82,20 +83,20 @@ TEST(SpecularLobes, FittedLookupsFollowTheTrueLobeBetterThanOneAlongR) {
                     sum += lobe[i];
                 }
                 for (double& x : lobe) x /= sum;
-                const double theta = std::acos(nv);
                 std::vector<double> fitted(lobe.size(), 0.0);
                 double weights = 0;
+                const size_t y = size_t(model == BrdfModel::gltf ? 0 : 9) + size_t(row);
+                const float* directions = &table[(y * kSpecularLobeTableWidth + size_t(column)) * 4];
+                const float* widths = &table[(y * kSpecularLobeTableWidth + 9 + size_t(column)) * 4];
                 for (int k = 0; k < 3; ++k) {
-                    const size_t x = size_t(k) * 9 + size_t(column), y = size_t(model == BrdfModel::gltf ? 0 : 9) + size_t(row);
-                    const float* e = &table[(y * kSpecularLobeTableWidth + x) * 4];
-                    const double s = e[0], r = e[1], w = e[2];
+                    const double t = directions[k], r = widths[k];
+                    const double w = k == 0 ? directions[3] : k == 1 ? widths[3] : 1.0 - directions[3] - widths[3];
                     EXPECT_GE(w, 0.0);
                     EXPECT_GT(r, 0.0);
                     EXPECT_LE(r, 1.0);
                     weights += w;
-                    // The axis at the fraction s of the angle from n to R, on their great circle.
-                    const double a = std::sin((1 - s) * theta) / std::sin(theta), b = std::sin(s * theta) / std::sin(theta);
-                    const Vec3 d{a * n[0] + b * R[0], a * n[1] + b * R[1], a * n[2] + b * R[2]};
+                    // The axis normalize(mix(n, R, t)), as the shader reads it.
+                    const Vec3 d{(1 - t) * n[0] + t * R[0], (1 - t) * n[1] + t * R[1], (1 - t) * n[2] + t * R[2]};
                     const double len = std::sqrt(dot(d, d));
                     const std::vector<double> kk = kernel({d[0] / len, d[1] / len, d[2] / len}, r);
                     for (size_t i = 0; i < fitted.size(); ++i) fitted[i] += w * kk[i];
@@ -108,6 +109,16 @@ TEST(SpecularLobes, FittedLookupsFollowTheTrueLobeBetterThanOneAlongR) {
                 // measured 2-10x closer; half is the bound.
                 EXPECT_LT(fitted_l1, 0.5 * mirror_l1) << brdf_model_name(model) << " roughness " << roughness << " n.v " << nv;
             }
+}
+
+// The table stores two weights per entry and the shader takes the third as 1 - w0 - w1:
+// valid only because the fit's three weights sum to 1.
+TEST(SpecularLobes, FittedWeightsSumToOne) {
+    for (int entry = 0; entry < kSpecularLobeModels * kSpecularLobeRows * kSpecularLobeColumns; ++entry) {
+        const double sum = double(kSpecularLobeEntries[entry * 3][2]) + kSpecularLobeEntries[entry * 3 + 1][2] +
+                           kSpecularLobeEntries[entry * 3 + 2][2];
+        EXPECT_NEAR(sum, 1.0, 1e-4) << "entry " << entry;
+    }
 }
 
 }  // namespace
