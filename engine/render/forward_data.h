@@ -18,7 +18,7 @@
 
 namespace facet::forward {
 
-// The most disks the forward pass shades (FACET_MAX_DISK_LIGHTS in forward_interface.glsl).
+// The most disks the forward pass shades: render/forward.frag unrolls FACET_DISK(0..15).
 inline constexpr uint32_t kMaxForwardDiskLights = 16;
 
 struct FrameData {
@@ -26,14 +26,9 @@ struct FrameData {
     glm::vec4 camera_position;
     glm::vec4 ibl;
     glm::uvec4 counts;
-    // The disks extracted from the environment, in the uniform buffer: the pipeline's
-    // DISK_LIGHTS reads them at constant offsets, which lavapipe loads once per draw
-    // instead of once per pixel (a storage buffer read at a loop index cost as much
-    // as the disk's shading).
-    LightData disks[kMaxForwardDiskLights];
 };
-static_assert(sizeof(FrameData) == 112 + 64 * kMaxForwardDiskLights && offsetof(FrameData, camera_position) == 64 &&
-                  offsetof(FrameData, ibl) == 80 && offsetof(FrameData, counts) == 96 && offsetof(FrameData, disks) == 112,
+static_assert(sizeof(FrameData) == 112 && offsetof(FrameData, camera_position) == 64 && offsetof(FrameData, ibl) == 80 &&
+                  offsetof(FrameData, counts) == 96,
               "Frame in forward_interface.glsl");
 
 struct DrawConstants {

@@ -118,8 +118,11 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
         return Error{"the forward pass shades at most " + std::to_string(kMaxForwardDiskLights) +
                      " disk lights extracted from the environment, not " +
                      std::to_string(settings.environment_lights.size()) + " (LightExtractionSettings::max_lights)"};
-    if (ibl && !settings.environment_lights.empty())
+    if (ibl && !settings.environment_lights.empty()) {
         defines.push_back({"DISK_LIGHTS", std::to_string(settings.environment_lights.size())});
+        for (size_t i = 0; i < settings.environment_lights.size(); ++i)
+            defines.push_back({"FACET_DISK_LIGHT_" + std::to_string(i), packed_light_literal(disk_data(settings.environment_lights[i]))});
+    }
     defines.push_back({"VIEW", std::to_string(int(view))});
 
     Pipeline::GraphicsDesc desc;
@@ -196,7 +199,6 @@ ForwardOutputs ForwardRenderer::add_draw_pass(RenderGraph& graph, const std::str
                          float(s.environment_light_level), 0.0f);
     const uint32_t disks = ibl ? uint32_t(s.environment_lights.size()) : 0u;
     data.counts = glm::uvec4(uint32_t(s.lights.size()), disks, 0, 0);
-    for (uint32_t i = 0; i < disks; ++i) data.disks[i] = disk_data(s.environment_lights[i]);
     std::vector<LightData> lights;
     lights.reserve(s.lights.size());
     for (const Light& l : s.lights) lights.push_back(light_data(l));

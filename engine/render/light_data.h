@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
+#include <string>
 
 #include <glm/glm.hpp>
 
@@ -15,7 +17,7 @@
 namespace facet {
 
 struct LightData {
-    glm::vec4 position_range;   // xyz position (metres), w range (0 = infinite)
+    glm::vec4 position_range;   // xyz position (metres), w range (0 = infinite); disk: 1 / (2 - 2 cos), 1 / (2 sin)
     glm::vec4 direction_type;   // xyz the direction the light travels, w the type (LightType, or 3: a disk)
     glm::vec4 color_intensity;  // rgb colour, a intensity (lux or candela; 1 for a disk's radiance)
     glm::vec4 cone;             // spot: the cone's scale and offset; disk: cos, radius, sin, solid angle
@@ -43,8 +45,9 @@ inline LightData light_data(const Light& l) {
 }
 
 // A disk extracted from the environment: its light travels away from d.direction (unit
-// here, so that the shaders need not normalise it). The cap's cosine, radius, sine and
-// solid angle 2 pi (1 - cos) are computed once here rather than per pixel.
+// here, so that the shaders need not normalise it). The cap's cosine, radius, sine, solid
+// angle 2 pi (1 - cos) and the reciprocals the shading divides by are computed once here
+// rather than per pixel.
 inline LightData disk_data(const DiskLight& d) {
     LightData data{};
     data.direction_type = glm::vec4(-glm::normalize(d.direction), kDiskLightType);
@@ -52,7 +55,30 @@ inline LightData disk_data(const DiskLight& d) {
     const double theta = d.angular_radius;
     data.cone = glm::vec4(float(std::cos(theta)), float(theta), float(std::sin(theta)),
                           float(2.0 * 3.14159265358979323846 * (1.0 - std::cos(theta))));
+    // 2 - 2 cos theta = 4 sin^2(theta / 2), without the cancellation of small caps.
+    const double half = std::sin(0.5 * theta);
+    data.position_range = glm::vec4(float(1.0 / std::max(4.0 * half * half, 1e-12)),
+                                    float(1.0 / std::max(2.0 * std::sin(theta), 1e-8)), 0.0f, 0.0f);
     return data;
+}
+
+// The light as a GLSL PackedLight constructor with every float written to round-trip
+// (%.9g): the forward pass compiles its disks into the shader as constants.
+inline std::string packed_light_literal(const LightData& d) {
+    std::string out = "PackedLight(";
+    const glm::vec4* parts[] = {&d.position_range, &d.direction_type, &d.color_intensity, &d.cone};
+    char number[32];
+    for (int p = 0; p < 4; ++p) {
+        out += p ? ", vec4(" : "vec4(";
+        for (int c = 0; c < 4; ++c) {
+            std::snprintf(number, sizeof number, "%.9g", double((*parts[p])[c]));
+            std::string n = number;
+            if (n.find_first_of(".eEn") == std::string::npos) n += ".0";  // a float literal
+            out += (c ? ", " : "") + n;
+        }
+        out += ")";
+    }
+    return out + ")";
 }
 
 }  // namespace facet

@@ -60,7 +60,7 @@ FacetSurface facet_surface(uint brdf, vec3 n, vec3 albedo, float metallic, float
 // glTF: mix(specular x F(0.04), F(baseColor), metallic) and (1 - specular x F(0.04))
 // (1 - metallic); thesis: F(F0) (the specular weight scaling it) and (1 - F)(1 - metallic).
 void facet_fresnel(FacetSurface s, float VdotH, out vec3 F, out vec3 kd) {
-    float w = pow(clamp(1.0 - VdotH, 0.0, 1.0), 5.0);
+    float x = clamp(1.0 - VdotH, 0.0, 1.0), x2 = x * x, w = x2 * x2 * x;  // (1 - v.h)^5
     if (s.brdf == FACET_BRDF_GLTF) {
         float Fd = s.specular_factor * (s.dielectric_f0 + (1.0 - s.dielectric_f0) * w);
         F = mix(vec3(Fd), s.albedo + (1.0 - s.albedo) * w, s.metallic);
@@ -195,6 +195,8 @@ struct FacetDiskLight {
     float angular_radius;  // theta, radians
     float sin_radius;      // sin theta
     float solid_angle;     // 2 pi (1 - cos theta), steradians
+    float inv_chord2;      // 1 / (2 - 2 cos theta), the squared chord of the radius
+    float inv_diameter;    // 1 / (2 sin theta)
     vec3 radiance;
 };
 
@@ -205,7 +207,10 @@ FacetDiskLight facet_make_disk_light(vec3 direction, float theta, vec3 radiance)
     d.cos_radius = cos(theta);
     d.angular_radius = theta;
     d.sin_radius = sin(theta);
-    d.solid_angle = 2.0 * PI * (1.0 - d.cos_radius);
+    float half_chord = sin(0.5 * theta);  // 2 - 2 cos theta = 4 sin^2(theta / 2), exact for small caps too
+    d.solid_angle = 4.0 * PI * half_chord * half_chord;
+    d.inv_chord2 = 1.0 / max(4.0 * half_chord * half_chord, 1e-12);
+    d.inv_diameter = 1.0 / max(2.0 * d.sin_radius, 1e-8);
     d.radiance = radiance;
     return d;
 }
@@ -219,8 +224,9 @@ FacetDiskLight facet_make_disk_light(vec3 direction, float theta, vec3 radiance)
 // the cancellation where the disk is small or far: the same as 2 r^2 / (s (s + t)).
 float facet_ggx_disk_share(float d2, float r2) {
     float t = 1.0 + d2 - r2;
-    float s = sqrt(max(t * t + 4.0 * r2, 0.0));  // (1 + (d-r)^2)(1 + (d+r)^2) = t^2 + 4 r^2
-    return t > 0.0 ? 2.0 * r2 / (s * (s + t)) : 0.5 * (1.0 - t / s);
+    float s = sqrt(max(t * t + 4.0 * r2, 1e-30));  // (1 + (d-r)^2)(1 + (d+r)^2) = t^2 + 4 r^2
+    // One division: 2 r^2 / (s (s + t)) where t > 0, (s - t) / (2 s) = (1 - t / s) / 2 elsewhere.
+    return (t > 0.0 ? 2.0 * r2 : s - t) / (t > 0.0 ? s * (s + t) : 2.0 * s);
 }
 
 // The cap shaded with the full BRDF (the environment's k for the thesis' model) in closed
@@ -256,7 +262,7 @@ float facet_segment_share(float x) {
 
 void facet_disk_light(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, out vec3 diffuse, out vec3 specular) {
     vec3 c = disk.direction;
-    float cos_theta = disk.cos_radius, sin_theta = disk.sin_radius, omega = disk.solid_angle;
+    float sin_theta = disk.sin_radius, omega = disk.solid_angle;
     float NdotC = dot(s.n, c);
     // The cap's irradiance: pi sin^2(theta) (n.c) above the horizon (exact); where the
     // horizon cuts it, the cap taken as a flat disk of radius rho = sin theta whose points
@@ -264,39 +270,37 @@ void facet_disk_light(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, 
     // visible segment, e pi rho^2 (segment share) + 2/3 (rho^2 - e^2)^1.5 (within 1-4% of
     // the sum over the cap).
     float cut = clamp(NdotC + sin_theta, 0.0, 2.0 * sin_theta);
-    float segment = facet_segment_share(cut / max(2.0 * sin_theta, 1e-8));
+    float segment = facet_segment_share(cut * disk.inv_diameter);
     float chord = max(sin_theta * sin_theta - NdotC * NdotC, 0.0);
     float irradiance = NdotC >= sin_theta ? PI * sin_theta * sin_theta * NdotC
                                           : max(NdotC * PI * sin_theta * sin_theta * segment + 2.0 / 3.0 * chord * sqrt(chord), 0.0);
     // A cap the horizon cuts: its visible part stands in as the cap between the horizon and
     // the cap's top, carrying the visible segment's solid angle.
-    float scale = 1.0;
+    float scale = 1.0, inv_chord2 = disk.inv_chord2;
     if (NdotC < sin_theta) {
-        float visible = omega * segment;
-        float sin_new = 0.5 * cut;
+        float sin_new = 0.5 * cut, cos_new = sqrt(max(1.0 - sin_new * sin_new, 0.0));
         vec3 across = c - NdotC * s.n;
-        across *= inversesqrt(max(dot(across, across), 1e-12));
-        sin_theta = sin_new;
-        cos_theta = sqrt(max(1.0 - sin_new * sin_new, 0.0));
-        c = across * cos_theta + s.n * sin_new;
-        omega = 2.0 * PI * (1.0 - cos_theta);
-        scale = visible / max(omega, 1e-12);
+        c = across * (inversesqrt(max(dot(across, across), 1e-12)) * cos_new) + s.n * sin_new;
+        float chord2 = 2.0 * sin_new * sin_new / (1.0 + cos_new);  // 2 - 2 cos, without the cancellation
+        inv_chord2 = 1.0 / max(chord2, 1e-12);
+        scale = omega * segment * inv_chord2 / PI;  // the segment's solid angle over the new cap's, pi chord2
+        omega = PI * chord2;
     }
     // The centre's half vector: the slope of the cap's image, F and the diffuse weight.
     vec3 h = v + c;
     h *= inversesqrt(max(dot(h, h), 1e-12));
     float VdotH = clamp(dot(v, h), 1e-4, 1.0), NdotH = clamp(dot(s.n, h), 1e-4, 1.0);
-    float alpha = max(s.roughness * s.roughness, MIN_ALPHA), a2 = alpha * alpha;
+    float alpha = max(s.roughness * s.roughness, MIN_ALPHA), a2 = alpha * alpha, inv_a2 = 1.0 / a2;
     vec3 R = reflect(-v, s.n);
-    float RdotC = dot(R, c);
-    float r2 = omega / (4.0 * PI * VdotH * NdotH * NdotH * NdotH);
-    float centre_d2 = (1.0 - NdotH * NdotH) / (NdotH * NdotH);
+    float q = 1.0 / (VdotH * NdotH * NdotH * NdotH);
+    float r2 = omega / (4.0 * PI) * q;                        // Omega / (4 (v.h) (n.h)^3)
+    float centre_d2 = (1.0 - NdotH * NdotH) * VdotH * NdotH * q;  // tan^2 of h's angle from n
     // R's distance from the cap in radii (1 at the edge), and the weight of the near view:
     // the lobe narrower than the cap's image and R not far outside it.
-    float reach2 = (2.0 - 2.0 * RdotC) / max(2.0 - 2.0 * cos_theta, 1e-12);
+    float reach2 = (2.0 - 2.0 * dot(R, c)) * inv_chord2;
     float outside = max(sqrt(reach2) - 1.0, 0.0);
     float near = r2 / (r2 + a2 + outside * outside * r2);
-    float share = facet_ggx_disk_share(mix(centre_d2, r2 * reach2, near) / a2, r2 / a2);
+    float share = facet_ggx_disk_share(mix(centre_d2, r2 * reach2, near) * inv_a2, r2 * inv_a2);
     // G / (4 n.l n.v), the model's visibility, at the centre.
     float NdotL = max(dot(s.n, c), 1e-4);
     float visibility;
@@ -307,7 +311,8 @@ void facet_disk_light(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, 
     vec3 F, kd;
     facet_fresnel(s, VdotH, F, kd);
     diffuse = kd * s.albedo * (irradiance / PI) * disk.radiance;
-    specular = F * (visibility * NdotL * 4.0 * VdotH / NdotH * share * scale) * disk.radiance;
+    // 4 (v.h) / (n.h) = 4 (v.h)^2 (n.h)^2 q.
+    specular = F * (visibility * NdotL * 4.0 * VdotH * VdotH * NdotH * NdotH * q * share * scale) * disk.radiance;
 }
 
 // The lookups of the prefiltered cube that stand for the specular lobe. One along R at the

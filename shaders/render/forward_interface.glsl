@@ -7,17 +7,11 @@
 // (std140 / std430, vec4-aligned).
 #include "render/packed_light.glsl"
 
-// The most disks the forward pass shades (engine/render/forward_data.h's kMaxForwardDiskLights).
-#define FACET_MAX_DISK_LIGHTS 16
-
 layout(binding = 0, std140) uniform Frame {
     mat4 view_projection;
     vec4 camera_position;  // xyz
     vec4 ibl;              // x: intensity, y: highest specular level (roughness 1), z: first level without the extracted lights
-    uvec4 counts;          // x: punctual lights, y: disk lights extracted from the environment
-    // The disks, frame.counts.y of them, read at constant offsets (DISK_LIGHTS, the
-    // pipeline's count): lavapipe then loads them once per draw, not once per pixel.
-    PackedLight disks[FACET_MAX_DISK_LIGHTS];
+    uvec4 counts;          // x: punctual lights, y: disk lights extracted from the environment (compiled in: forward.frag)
 } frame;
 
 // The punctual lights (frame.counts.x).

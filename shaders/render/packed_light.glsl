@@ -9,7 +9,8 @@
 #include "facet/shading.glsl"
 
 struct PackedLight {
-    vec4 position_range;   // xyz position (metres), w range (0 = infinite)
+    vec4 position_range;   // xyz position (metres), w range (0 = infinite); disk: x = 1 / (2 - 2 cos theta),
+                           // y = 1 / (2 sin theta)
     vec4 direction_type;   // xyz the direction the light travels, w the type: FACET_LIGHT_*
                            // (0 directional, 1 point, 2 spot) or 3, a disk extracted from
                            // the environment
@@ -38,6 +39,8 @@ FacetDiskLight unpack_disk_light(PackedLight light) {
     d.angular_radius = light.cone.y;
     d.sin_radius = light.cone.z;
     d.solid_angle = light.cone.w;
+    d.inv_chord2 = light.position_range.x;
+    d.inv_diameter = light.position_range.y;
     d.radiance = light.color_intensity.rgb * light.color_intensity.a;
     return d;
 }

@@ -105,8 +105,7 @@ TEST(GpuLayout, ForwardConstantsMatchTheShaders) {
                    {{"view_projection", offsetof(FrameData, view_projection)},
                     {"camera_position", offsetof(FrameData, camera_position)},
                     {"ibl", offsetof(FrameData, ibl)},
-                    {"counts", offsetof(FrameData, counts)},
-                    {"disks", offsetof(FrameData, disks)}},
+                    {"counts", offsetof(FrameData, counts)}},
                    std::nullopt);
     auto vert = compile(ShaderStage::vertex, "render/forward.vert");
     expect_members(vert, "render/forward.vert", "Draw",
