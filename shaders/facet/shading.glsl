@@ -269,15 +269,21 @@ void facet_disk_light(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, 
     // rise by n.c = e above the horizon at its centre: the integral of the height over the
     // visible segment, e pi rho^2 (segment share) + 2/3 (rho^2 - e^2)^1.5 (within 1-4% of
     // the sum over the cap).
+    // Caps under 2 degrees (suns, lamps) are taken as points at the horizon, which then
+    // cuts them within their radius alone; where the disk is a constant of the pipeline
+    // (the forward pass) this choice costs nothing, and the small cap's shading skips the
+    // horizon's arithmetic.
+    bool wide = sin_theta > 0.035;
     float cut = clamp(NdotC + sin_theta, 0.0, 2.0 * sin_theta);
     float segment = facet_segment_share(cut * disk.inv_diameter);
     float chord = max(sin_theta * sin_theta - NdotC * NdotC, 0.0);
-    float irradiance = NdotC >= sin_theta ? PI * sin_theta * sin_theta * NdotC
-                                          : max(NdotC * PI * sin_theta * sin_theta * segment + 2.0 / 3.0 * chord * sqrt(chord), 0.0);
+    float irradiance = NdotC >= sin_theta || !wide
+                           ? PI * sin_theta * sin_theta * max(NdotC, 0.0)
+                           : max(NdotC * PI * sin_theta * sin_theta * segment + 2.0 / 3.0 * chord * sqrt(chord), 0.0);
     // A cap the horizon cuts: its visible part stands in as the cap between the horizon and
     // the cap's top, carrying the visible segment's solid angle.
-    float scale = 1.0, inv_chord2 = disk.inv_chord2;
-    if (NdotC < sin_theta) {
+    float scale = wide || NdotC > 0.0 ? 1.0 : 0.0, inv_chord2 = disk.inv_chord2;
+    if (wide && NdotC < sin_theta) {
         float sin_new = 0.5 * cut, cos_new = sqrt(max(1.0 - sin_new * sin_new, 0.0));
         vec3 across = c - NdotC * s.n;
         c = across * (inversesqrt(max(dot(across, across), 1e-12)) * cos_new) + s.n * sin_new;
