@@ -78,7 +78,8 @@ ForwardRenderer::Slot& ForwardRenderer::slot(uint32_t frame) {
 
 Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene, uint32_t instance, View view,
                                                            const Target& target, bool ibl,
-                                                           const FrameSettings& settings) {
+                                                           const FrameSettings& settings,
+                                                           const std::vector<ShaderDefine>& disk_defines) {
     const Instance& in = scene.scene().instances.at(instance);
     const Primitive& primitive = scene.scene().primitives.at(in.primitive);
     const uint32_t material = primitive.material;
@@ -114,15 +115,7 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     define_if(settings.brdf == BrdfModel::thesis, "BRDF_THESIS");
     define_if(ibl && settings.multiscatter, "MULTISCATTER");
     define_if(ibl && settings.dominant_direction, "DOMINANT_DIRECTION");
-    if (ibl && settings.environment_lights.size() > kMaxForwardDiskLights)
-        return Error{"the forward pass shades at most " + std::to_string(kMaxForwardDiskLights) +
-                     " disk lights extracted from the environment, not " +
-                     std::to_string(settings.environment_lights.size()) + " (LightExtractionSettings::max_lights)"};
-    if (ibl && !settings.environment_lights.empty()) {
-        defines.push_back({"DISK_LIGHTS", std::to_string(settings.environment_lights.size())});
-        for (size_t i = 0; i < settings.environment_lights.size(); ++i)
-            defines.push_back({"FACET_DISK_LIGHT_" + std::to_string(i), packed_light_literal(disk_data(settings.environment_lights[i]))});
-    }
+    defines.insert(defines.end(), disk_defines.begin(), disk_defines.end());
     defines.push_back({"VIEW", std::to_string(int(view))});
 
     Pipeline::GraphicsDesc desc;
@@ -158,9 +151,20 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
 Result<std::vector<const Pipeline*>> ForwardRenderer::pipelines(const GpuScene& gpu, View view, const Target& target,
                                                                 bool ibl, const FrameSettings& s) {
     const Scene& scene = gpu.scene();
+    // The disks as constants of every material's pipeline, written once for the pass.
+    std::vector<ShaderDefine> disk_defines;
+    if (ibl && s.environment_lights.size() > kMaxForwardDiskLights)
+        return Error{"the forward pass shades at most " + std::to_string(kMaxForwardDiskLights) +
+                     " disk lights extracted from the environment, not " +
+                     std::to_string(s.environment_lights.size()) + " (LightExtractionSettings::max_lights)"};
+    if (ibl && !s.environment_lights.empty()) {
+        disk_defines.push_back({"DISK_LIGHTS", std::to_string(s.environment_lights.size())});
+        for (size_t i = 0; i < s.environment_lights.size(); ++i)
+            disk_defines.push_back({"FACET_DISK_LIGHT_" + std::to_string(i), packed_light_literal(disk_data(s.environment_lights[i]))});
+    }
     std::vector<const Pipeline*> out(scene.instances.size());
     for (uint32_t i = 0; i < scene.instances.size(); ++i) {
-        auto p = material_pipeline(gpu, i, view, target, ibl, s);
+        auto p = material_pipeline(gpu, i, view, target, ibl, s, disk_defines);
         if (!p) return p.error();
         out[i] = *p;
     }

@@ -53,10 +53,11 @@ inline LightData disk_data(const DiskLight& d) {
     data.direction_type = glm::vec4(-glm::normalize(d.direction), kDiskLightType);
     data.color_intensity = glm::vec4(d.radiance, 1.0f);
     const double theta = d.angular_radius;
-    data.cone = glm::vec4(float(std::cos(theta)), float(theta), float(std::sin(theta)),
-                          float(2.0 * 3.14159265358979323846 * (1.0 - std::cos(theta))));
-    // 2 - 2 cos theta = 4 sin^2(theta / 2), without the cancellation of small caps.
+    // 2 - 2 cos theta = 4 sin^2(theta / 2), without the cancellation of small caps (as
+    // facet_make_disk_light in shaders/facet/shading.glsl).
     const double half = std::sin(0.5 * theta);
+    data.cone = glm::vec4(float(std::cos(theta)), float(theta), float(std::sin(theta)),
+                          float(4.0 * 3.14159265358979323846 * half * half));
     data.position_range = glm::vec4(float(1.0 / std::max(4.0 * half * half, 1e-12)),
                                     float(1.0 / std::max(2.0 * std::sin(theta), 1e-8)), 0.0f, 0.0f);
     return data;

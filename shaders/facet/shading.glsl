@@ -229,6 +229,16 @@ float facet_ggx_disk_share(float d2, float r2) {
     return (t > 0.0 ? 2.0 * r2 : s - t) / (t > 0.0 ? s * (s + t) : 2.0 * s);
 }
 
+// The share of a disk's area on one side of a chord at distance (1 - 2x) radii from its
+// centre, x in [0, 1]: the circular segment's area, 16 / (3 pi) x^1.5 (1 - x / 3) for
+// x <= 1/2 (within 0.5% of the exact (acos(1 - 2x) - (1 - 2x) sqrt(1 - (1 - 2x)^2)) / pi,
+// and exactly 1/2 at x = 1/2), mirrored above.
+float facet_segment_share(float x) {
+    float y = min(x, 1.0 - x);
+    float f = 1.6976527 * y * sqrt(y) * (1.0 - y / 3.0);
+    return x <= 0.5 ? f : 1.0 - f;
+}
+
 // The cap shaded with the full BRDF (the environment's k for the thesis' model) in closed
 // form, the same arithmetic for every lobe and cap: a loop over directions in the cap costs
 // every pixel its longest trip on SIMD hardware (lavapipe runs both sides of every branch
@@ -250,16 +260,6 @@ float facet_ggx_disk_share(float d2, float r2) {
 // near the cap and 0.2-9% (mostly under 4%) in the tails; the final image under the shared
 // environments is as close to the truth as with the sums (docs/accuracy.md).
 // Occlusion not applied.
-// The share of a disk's area on one side of a chord at distance (1 - 2x) radii from its
-// centre, x in [0, 1]: the circular segment's area, 16 / (3 pi) x^1.5 (1 - x / 3) for
-// x <= 1/2 (within 0.5% of the exact (acos(1 - 2x) - (1 - 2x) sqrt(1 - (1 - 2x)^2)) / pi,
-// and exactly 1/2 at x = 1/2), mirrored above.
-float facet_segment_share(float x) {
-    float y = min(x, 1.0 - x);
-    float f = 1.6976527 * y * sqrt(y) * (1.0 - y / 3.0);
-    return x <= 0.5 ? f : 1.0 - f;
-}
-
 void facet_disk_light(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, out vec3 diffuse, out vec3 specular) {
     vec3 c = disk.direction;
     float sin_theta = disk.sin_radius, omega = disk.solid_angle;

@@ -16,6 +16,7 @@
 #include <facet/gpu/resources.h>
 #include <facet/graph/render_graph.h>
 #include <facet/render/camera.h>
+#include <facet/shader/compiler.h>
 #include <facet/render/tonemap.h>
 #include <facet/render/views.h>
 #include <facet/ibl/light_extraction.h>
@@ -142,8 +143,10 @@ private:
     struct Slot {
         Buffer frame, lights, sky_disks;
     };
+    // disk_defines: the extracted disks as the pipeline's constants (made once per pass by pipelines()).
     Result<const Pipeline*> material_pipeline(const GpuScene& scene, uint32_t instance, View view,
-                                              const Target& target, bool ibl, const FrameSettings& settings);
+                                              const Target& target, bool ibl, const FrameSettings& settings,
+                                              const std::vector<ShaderDefine>& disk_defines);
     Result<std::vector<const Pipeline*>> pipelines(const GpuScene& scene, View view, const Target& target,
                                                    bool ibl, const FrameSettings& settings);
     DrawList draw_list(const GpuScene& scene, glm::vec3 camera_position) const;
