@@ -56,24 +56,35 @@ struct Frames {
     double forward_ms = 0;
 };
 
-Result<Frames> render_frames(Context& context, const RenderJob& job, int runs) {
-    auto session = RenderSession::create(context, job, [](const std::string& line) {
-        std::fprintf(stderr, "%s:   %s\n", program, line.c_str());
-    });
-    if (!session) return session.error();
-    Frames f{std::move(*session), {}, 0};
-    std::vector<double> forward_ms;
-    for (int r = 0; r < runs; ++r) {
-        auto images = f.session->render_frame(true);
-        if (!images) return images.error();
-        double ms = 0;
-        for (const PassTiming& t : images->pass_wall)
-            if (t.name == "forward") ms += t.time_ms;
-        forward_ms.push_back(ms);
-        f.frame = std::move(images).value();
+// Each job's session and frames, a frame of each job in turn per run, the order reversed every
+// other run (ABBA): the machine's drift over the runs (a shared host's load) falls on every
+// job alike, where all runs of one job before the other's swung a ratio by up to 40% here.
+// What this cannot remove (measured, lavapipe): the session created second reads 5-15%
+// slower than the first with the same method, so a ratio against --compare reads low by
+// that much; docs/accuracy.md's cost figures are medians of separate processes.
+Result<std::vector<Frames>> render_frames(Context& context, const std::vector<RenderJob>& jobs, int runs) {
+    std::vector<Frames> frames;
+    for (const RenderJob& job : jobs) {
+        auto session = RenderSession::create(context, job, [](const std::string& line) {
+            std::fprintf(stderr, "%s:   %s\n", program, line.c_str());
+        });
+        if (!session) return session.error();
+        frames.push_back(Frames{std::move(*session), {}, 0});
     }
-    f.forward_ms = median(forward_ms);
-    return f;
+    std::vector<std::vector<double>> forward_ms(jobs.size());
+    for (int r = 0; r < runs; ++r)
+        for (size_t k = 0; k < frames.size(); ++k) {
+            const size_t j = r % 2 ? frames.size() - 1 - k : k;
+            auto images = frames[j].session->render_frame(true);
+            if (!images) return images.error();
+            double ms = 0;
+            for (const PassTiming& t : images->pass_wall)
+                if (t.name == "forward") ms += t.time_ms;
+            forward_ms[j].push_back(ms);
+            frames[j].frame = std::move(images).value();
+        }
+    for (size_t j = 0; j < frames.size(); ++j) frames[j].forward_ms = median(forward_ms[j]);
+    return frames;
 }
 
 // The session's predicted error of a group ("roughness [0.2,0.4) metal"); negative: none.
@@ -182,24 +193,21 @@ int run_accuracy(int argc, char** argv) {
         job.env = file.string();
         job.frame.skybox = false;
         job.frame.views = {View::normal, View::position, View::basecolor, View::metallic, View::roughness};
-        auto rendered = render_frames(context, job, o.runs);
-        std::error_code ec;
-        if (!rendered) {
-            fs::remove(file, ec);
-            return fail(label + ": " + rendered.error().message);
-        }
-        std::optional<Frames> compared;
+        std::vector<RenderJob> jobs{job};
         if (o.compare) {
-            RenderJob other = job;
-            other.shading = *o.compare;
-            std::fprintf(stderr, "%s:   compared with %s\n", program, shading_method_name(*o.compare));
-            auto r = render_frames(context, other, o.runs);
-            if (!r) {
-                fs::remove(file, ec);
-                return fail(label + ": " + shading_method_name(*o.compare) + ": " + r.error().message);
-            }
-            compared = std::move(*r);
+            jobs.push_back(job);
+            jobs.back().shading = *o.compare;
+            std::fprintf(stderr, "%s:   compared with %s, frames alternating\n", program,
+                         shading_method_name(*o.compare));
         }
+        auto all = render_frames(context, jobs, o.runs);
+        std::error_code ec;
+        if (!all) {
+            fs::remove(file, ec);
+            return fail(label + ": " + all.error().message);
+        }
+        Frames* rendered = &all->front();
+        Frames* compared = o.compare ? &all->back() : nullptr;
         const auto& session = rendered->session;
         std::optional<RenderedImages> frame = std::move(rendered->frame);
         if (o.reference) {
