@@ -20,6 +20,8 @@ const std::vector<std::string_view>& supported_extensions() {
             "KHR_draco_mesh_compression",       // gltf_decompress_draco.cpp
             "KHR_lights_punctual",              // gltf_nodes.cpp
             "KHR_materials_emissive_strength",  // gltf_materials.cpp
+            "KHR_materials_ior",                // gltf_material_extensions.cpp
+            "KHR_materials_specular",           // gltf_material_extensions.cpp: the factors (textures warned)
             "KHR_mesh_quantization",            // gltf_attributes.cpp: every component type, normalized or not
         };
         std::sort(list.begin(), list.end());

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "scene/gltf_errors.h"
+#include "scene/gltf_material_extensions.h"
 
 namespace facet::gltf_detail {
 
@@ -46,7 +47,7 @@ uint32_t wrap_mode(int gl_wrap, const std::string& where) {
 
 }  // namespace
 
-Material convert_material(const tinygltf::Model& model, size_t index) {
+Material convert_material(const tinygltf::Model& model, size_t index, std::vector<std::string>& warnings) {
     const tinygltf::Material& m = model.materials[index];
     std::string where = label("material", index, m.name);
     const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
@@ -67,6 +68,7 @@ Material convert_material(const tinygltf::Model& model, size_t index) {
         const tinygltf::Value& value = strength->second.Get("emissiveStrength");
         if (value.IsNumber()) out.emissive *= float(value.GetNumberAsDouble());
     }
+    read_dielectric_extensions(m, where, out, warnings);
     out.normal_scale = float(m.normalTexture.scale);
     out.occlusion_strength = float(m.occlusionTexture.strength);
     if (m.alphaMode == "OPAQUE") {

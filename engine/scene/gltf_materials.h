@@ -3,13 +3,17 @@
 #include <tiny_gltf.h>
 
 #include <cstddef>
+#include <string>
+#include <vector>
 
 #include "scene/gltf_parse.h"
 #include <facet/scene/scene.h>
 
 namespace facet::gltf_detail {
 
-Material convert_material(const tinygltf::Model& model, size_t index);
+// Material `index` with the extensions that change its BRDF (gltf_material_extensions.h); what
+// is read but not drawn is said in `warnings`.
+Material convert_material(const tinygltf::Model& model, size_t index, std::vector<std::string>& warnings);
 
 TextureSampler convert_sampler(const tinygltf::Sampler& s, size_t index);
 

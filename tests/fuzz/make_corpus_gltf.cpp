@@ -87,12 +87,15 @@ std::string textured(const std::string& image) {
            R"("metallicRoughnessTexture":{"index":0}},"normalTexture":{"index":0,"scale":0.5},)"
            R"("occlusionTexture":{"index":0,"strength":0.7},"emissiveTexture":{"index":0},"emissiveFactor":[1,1,1],)"
            R"("extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":2}}},)"
-           R"({"alphaMode":"MASK","alphaCutoff":0.3,"doubleSided":true,"normalTexture":{"index":0}},)"
+           R"({"alphaMode":"MASK","alphaCutoff":0.3,"doubleSided":true,"normalTexture":{"index":0},)"
+           R"("extensions":{"KHR_materials_ior":{"ior":1.33},"KHR_materials_specular":{"specularFactor":0.5,)"
+           R"("specularColorFactor":[1,0.5,0.5],"specularTexture":{"index":0}}}},)"
            R"({"alphaMode":"BLEND"}],)"
            R"("textures":[{"source":0,"sampler":0}],)"
            R"("samplers":[{"magFilter":9728,"minFilter":9987,"wrapS":33648,"wrapT":33071}],)"
            R"("images":[)" + image + "],"
-           R"("extensionsUsed":["KHR_materials_emissive_strength"],)" + kOneNode;
+           R"("extensionsUsed":["KHR_materials_emissive_strength","KHR_materials_ior","KHR_materials_specular"],)" +
+           kOneNode;
 }
 
 const std::string kStripsAndFans =

@@ -1,0 +1,73 @@
+#include "scene/gltf_material_extensions.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "scene/gltf_errors.h"
+
+namespace facet::gltf_detail {
+
+namespace {
+
+// The extension's object, or null when the material does not use it.
+const tinygltf::Value* extension(const tinygltf::Material& m, const char* name, const std::string& where) {
+    const auto found = m.extensions.find(name);
+    if (found == m.extensions.end()) return nullptr;
+    if (!found->second.IsObject()) fail(where + ": " + name + " must be an object");
+    return &found->second;
+}
+
+// A number member: `fallback` when absent; an error naming it when not a finite number.
+double number(const tinygltf::Value& object, const char* key, double fallback, const std::string& where) {
+    if (!object.Has(key)) return fallback;
+    const tinygltf::Value& v = object.Get(key);
+    if (!v.IsNumber() || !std::isfinite(v.GetNumberAsDouble())) fail(where + "." + key + " must be a finite number");
+    return v.GetNumberAsDouble();
+}
+
+std::string number_text(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return text;
+}
+
+}  // namespace
+
+void read_dielectric_extensions(const tinygltf::Material& m, const std::string& where, Material& out,
+                                std::vector<std::string>& warnings) {
+    if (const tinygltf::Value* ior_ext = extension(m, "KHR_materials_ior", where)) {
+        const std::string at = where + ": KHR_materials_ior";
+        const double ior = number(*ior_ext, "ior", 1.5, at);
+        if (!(ior >= 1.0 || ior == 0.0))
+            fail(at + ".ior " + number_text(ior) + " is neither 0 nor at least 1 (an index of refraction)");
+        const double r = (ior - 1.0) / (ior + 1.0);
+        out.dielectric_f0 = float(r * r);
+    }
+    const tinygltf::Value* spec = extension(m, "KHR_materials_specular", where);
+    if (!spec) return;
+    const std::string at = where + ": KHR_materials_specular";
+    const double factor = number(*spec, "specularFactor", 1.0, at);
+    if (factor < 0.0 || factor > 1.0) fail(at + ".specularFactor " + number_text(factor) + " is outside [0, 1]");
+    double colour[3] = {1.0, 1.0, 1.0};
+    if (spec->Has("specularColorFactor")) {
+        const tinygltf::Value& c = spec->Get("specularColorFactor");
+        if (!c.IsArray() || c.ArrayLen() != 3) fail(at + ".specularColorFactor must have 3 numbers");
+        for (int i = 0; i < 3; ++i) {
+            const tinygltf::Value& v = c.Get(i);
+            if (!v.IsNumber() || !std::isfinite(v.GetNumberAsDouble()) || v.GetNumberAsDouble() < 0.0)
+                fail(at + ".specularColorFactor must have 3 finite numbers >= 0");
+            colour[i] = v.GetNumberAsDouble();
+        }
+    }
+    const double largest = std::max({colour[0], colour[1], colour[2]});
+    if (colour[0] != colour[1] || colour[1] != colour[2])
+        warnings.push_back(at + ": specularColorFactor [" + number_text(colour[0]) + ", " + number_text(colour[1]) +
+                           ", " + number_text(colour[2]) + "] is not grey: drawn uncoloured, by its largest component");
+    for (const char* texture : {"specularTexture", "specularColorTexture"})
+        if (spec->Has(texture)) warnings.push_back(at + ": " + texture + " is not drawn (the factors alone are)");
+    out.dielectric_f0 = float(std::min(double(out.dielectric_f0) * largest, 1.0));
+    out.specular_factor = float(factor);
+}
+
+}  // namespace facet::gltf_detail

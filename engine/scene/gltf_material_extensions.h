@@ -1,0 +1,24 @@
+#pragma once
+// The material extensions that change the dielectric lobe's Fresnel, read into Material's
+// dielectric_f0 and specular_factor (the shading's, the views' and the truth's inputs):
+// - KHR_materials_ior: F0 = ((ior - 1) / (ior + 1))^2, outside ior 1; the schema allows
+//   ior >= 1 and ior = 0 (F0 = 1, the specular-glossiness conversion);
+// - KHR_materials_specular: dielectric F0 = min(F0(ior) x specularColor, 1) x specular and
+//   F90 = specular (the extension's "Implementation"), with specular = specularFactor. A
+//   grey specularColorFactor folds into F0 exactly; a coloured one, specularTexture and
+//   specularColorTexture are not drawn (the lobe's F0 is one number here): a warning each,
+//   the colour taken by its largest component.
+// Invalid values (ior in (0, 1), a factor out of its range) are errors naming the material.
+#include <string>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+#include <facet/scene/scene.h>
+
+namespace facet::gltf_detail {
+
+void read_dielectric_extensions(const tinygltf::Material& material, const std::string& where, Material& out,
+                                std::vector<std::string>& warnings);
+
+}  // namespace facet::gltf_detail

@@ -1,0 +1,123 @@
+// KHR_materials_ior and KHR_materials_specular read into the dielectric lobe's F0 and
+// strength (scene/gltf_material_extensions.h), against the extensions' formulas computed
+// here: F0 = ((ior - 1) / (ior + 1))^2, then min(F0 x specularColor, 1), and the
+// specular weight = specularFactor; what is not drawn is a warning, invalid values an
+// error naming the material.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+#include <facet/scene/gltf_loader.h>
+#include "support/gltf_files.h"
+
+namespace facet {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct TempDir {
+    fs::path path = fs::temp_directory_path() / ("facet_gltf_material_ext_" + std::to_string(::getpid()));
+    TempDir() { fs::create_directories(path); }
+    ~TempDir() { fs::remove_all(path); }
+};
+
+// One triangle whose material 0 has `extensions` (a JSON object's members).
+Result<Scene> load_material(const TempDir& dir, const std::string& extensions) {
+    const std::string text = R"({"asset": {"version": "2.0"},
+  "extensionsUsed": ["KHR_materials_ior", "KHR_materials_specular"],
+  "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
+  "bufferViews": [{"buffer": 0, "byteLength": 36}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}],
+  "materials": [{"name": "glass", "extensions": {)" + extensions + R"(}}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
+  "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0})";
+    const fs::path path = dir.path / "model.gltf";
+    test::write_bytes(path.string(), text);
+    return load_gltf(path.string());
+}
+
+double f0_of(double ior) {
+    const double r = (ior - 1.0) / (ior + 1.0);
+    return r * r;
+}
+
+TEST(GltfMaterialExtensions, IorSetsTheDielectricF0) {
+    TempDir dir;
+    for (double ior : {1.0, 1.33, 1.5, 2.42, 0.0}) {
+        const Result<Scene> scene = load_material(dir, R"("KHR_materials_ior": {"ior": )" + std::to_string(ior) + "}");
+        ASSERT_TRUE(scene.ok()) << ior << ": " << scene.error().message;
+        EXPECT_NEAR(scene->materials[0].dielectric_f0, f0_of(ior), 1e-6) << ior;
+        EXPECT_EQ(scene->materials[0].specular_factor, 1.0f);
+        EXPECT_TRUE(scene->warnings.empty()) << scene->warnings[0];
+    }
+    EXPECT_NEAR(f0_of(0.0), 1.0, 1e-12);  // the specular-glossiness conversion's ior
+    // Absent: glTF's 1.5.
+    const Result<Scene> plain = load_material(dir, R"("KHR_materials_ior": {})");
+    ASSERT_TRUE(plain.ok()) << plain.error().message;
+    EXPECT_NEAR(plain->materials[0].dielectric_f0, 0.04, 1e-7);
+}
+
+TEST(GltfMaterialExtensions, SpecularScalesTheLobeAndItsGreyColourTheF0) {
+    TempDir dir;
+    const Result<Scene> half = load_material(dir, R"("KHR_materials_specular": {"specularFactor": 0.5})");
+    ASSERT_TRUE(half.ok()) << half.error().message;
+    EXPECT_EQ(half->materials[0].specular_factor, 0.5f);
+    EXPECT_NEAR(half->materials[0].dielectric_f0, 0.04, 1e-7);
+    // With ior: min(F0(ior) x colour, 1), the clamp before the factor.
+    const Result<Scene> grey = load_material(
+        dir, R"("KHR_materials_ior": {"ior": 1.33}, "KHR_materials_specular": {"specularColorFactor": [2, 2, 2], "specularFactor": 0.25})");
+    ASSERT_TRUE(grey.ok()) << grey.error().message;
+    EXPECT_NEAR(grey->materials[0].dielectric_f0, 2.0 * f0_of(1.33), 1e-6);
+    EXPECT_EQ(grey->materials[0].specular_factor, 0.25f);
+    EXPECT_TRUE(grey->warnings.empty());
+    const Result<Scene> clamped = load_material(dir, R"("KHR_materials_specular": {"specularColorFactor": [30, 30, 30]})");
+    ASSERT_TRUE(clamped.ok()) << clamped.error().message;
+    EXPECT_EQ(clamped->materials[0].dielectric_f0, 1.0f);
+    const Result<Scene> off = load_material(dir, R"("KHR_materials_specular": {"specularFactor": 0})");
+    ASSERT_TRUE(off.ok()) << off.error().message;
+    EXPECT_EQ(off->materials[0].specular_factor, 0.0f);  // Lambert only
+}
+
+TEST(GltfMaterialExtensions, WhatIsNotDrawnIsAWarningNamingIt) {
+    TempDir dir;
+    const Result<Scene> scene = load_material(
+        dir, R"("KHR_materials_specular": {"specularColorFactor": [1, 0.5, 0.25], "specularTexture": {"index": 0},
+                 "specularColorTexture": {"index": 0}})");
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    ASSERT_EQ(scene->warnings.size(), 3u);
+    EXPECT_EQ(scene->warnings[0], "material 'glass': KHR_materials_specular: specularColorFactor [1, 0.5, 0.25] is not "
+                                  "grey: drawn uncoloured, by its largest component");
+    EXPECT_EQ(scene->warnings[1], "material 'glass': KHR_materials_specular: specularTexture is not drawn (the factors "
+                                  "alone are)");
+    EXPECT_NE(scene->warnings[2].find("specularColorTexture is not drawn"), std::string::npos);
+    EXPECT_NEAR(scene->materials[0].dielectric_f0, 0.04, 1e-7);  // the largest component, 1
+}
+
+TEST(GltfMaterialExtensions, InvalidValuesAreErrorsNamingTheMaterial) {
+    TempDir dir;
+    const std::string file = (dir.path / "model.gltf").string();
+    const std::pair<const char*, const char*> cases[] = {
+        {R"("KHR_materials_ior": {"ior": 0.5})",
+         "material 'glass': KHR_materials_ior.ior 0.5 is neither 0 nor at least 1 (an index of refraction)"},
+        {R"("KHR_materials_ior": {"ior": -2})",
+         "material 'glass': KHR_materials_ior.ior -2 is neither 0 nor at least 1 (an index of refraction)"},
+        {R"("KHR_materials_ior": {"ior": "glass"})", "material 'glass': KHR_materials_ior.ior must be a finite number"},
+        {R"("KHR_materials_specular": {"specularFactor": 1.5})",
+         "material 'glass': KHR_materials_specular.specularFactor 1.5 is outside [0, 1]"},
+        {R"("KHR_materials_specular": {"specularColorFactor": [1, 1]})",
+         "material 'glass': KHR_materials_specular.specularColorFactor must have 3 numbers"},
+        {R"("KHR_materials_specular": {"specularColorFactor": [1, -1, 1]})",
+         "material 'glass': KHR_materials_specular.specularColorFactor must have 3 finite numbers >= 0"},
+    };
+    for (const auto& [extensions, message] : cases) {
+        const Result<Scene> scene = load_material(dir, extensions);
+        ASSERT_FALSE(scene.ok()) << extensions;
+        EXPECT_EQ(scene.error().message, file + ": " + message) << extensions;
+    }
+}
+
+}  // namespace
+}  // namespace facet
