@@ -5,7 +5,10 @@
 #include <facet/render/forward_renderer.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <string>
 
 #include <facet/gpu/context.h>
 #include <facet/gpu/pipeline.h>
@@ -15,6 +18,7 @@
 #include <facet/gpu/transfer.h>
 #include <facet/shader/program_cache.h>
 #include "render/forward_data.h"
+#include "render/glsl_literal.h"
 #include "core/guarded.h"
 
 namespace facet {
@@ -27,6 +31,30 @@ VkSamplerCreateInfo clamped_linear() {
     info.magFilter = info.minFilter = VK_FILTER_LINEAR;
     info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     return info;
+}
+
+// KHR_texture_transform's matrix as a GLSL mat3x2 constructor (column-major, as stored).
+std::string uv_transform_literal(const std::array<float, 6>& m) {
+    std::string s = "mat3x2(";
+    for (size_t i = 0; i < 6; ++i) s += (i ? ", " : "") + glsl_float_literal(m[i]);
+    return s + ")";
+}
+
+// The normal map's tangent axes under the transform, as a mat2 constructor: the uv
+// derivatives turn by M^-1 (M the transform's 2x2 part), [dp/du' dp/dv'] = [dp/du dp/dv] M^-1,
+// and the map's frame is T = dp/du, B = -dp/dv (glTF: +Y up the image, v down it), so
+// [T' B'] = [T B] F M^-1 F with F = diag(1, -1): the inverse with its off-diagonal signs
+// flipped, each column normalised (a rotation by theta turns the frame by theta). The
+// identity for a degenerate M.
+std::string tangent_frame_literal(const std::array<float, 6>& m) {
+    const double a = m[0], b = m[1], c = m[2], d = m[3], det = a * d - b * c;
+    glm::dvec2 u(1.0, 0.0), v(0.0, 1.0);
+    if (std::abs(det) > 1e-12) {
+        u = glm::normalize(glm::dvec2(d, b) / det);
+        v = glm::normalize(glm::dvec2(c, a) / det);
+    }
+    return "mat2(" + glsl_float_literal(u.x) + ", " + glsl_float_literal(u.y) + ", " + glsl_float_literal(v.x) + ", " +
+           glsl_float_literal(v.y) + ")";
 }
 
 }  // namespace
@@ -95,10 +123,18 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     const char* maps[] = {"HAS_BASE_COLOR_MAP", "HAS_METALLIC_ROUGHNESS_MAP", "HAS_NORMAL_MAP", "HAS_OCCLUSION_MAP",
                           "HAS_EMISSIVE_MAP"};
     const char* uv1[] = {"BASE_COLOR_UV1", "METALLIC_ROUGHNESS_UV1", "NORMAL_UV1", "OCCLUSION_UV1", "EMISSIVE_UV1"};
+    const char* transforms[] = {"BASE_COLOR_TRANSFORM", "METALLIC_ROUGHNESS_TRANSFORM", "NORMAL_TRANSFORM",
+                                "OCCLUSION_TRANSFORM", "EMISSIVE_TRANSFORM"};
     for (size_t t = 0; t < 5; ++t) {
         const bool has = scene.has_texture(material, slots[t]);
         define_if(has, maps[t]);
         define_if(has && refs[t]->uv_set == 1, uv1[t]);
+        // KHR_texture_transform as a constant of the material's pipeline (no buffer read).
+        if (has && refs[t]->transformed()) {
+            defines.push_back({transforms[t], uv_transform_literal(refs[t]->uv_transform)});
+            if (slots[t] == TextureSlot::normal)
+                defines.push_back({"NORMAL_TANGENT_FRAME", tangent_frame_literal(refs[t]->uv_transform)});
+        }
     }
     define_if(m.alpha_mode == AlphaMode::opaque, "ALPHA_OPAQUE");
     define_if(m.alpha_mode == AlphaMode::mask, "ALPHA_MASK");

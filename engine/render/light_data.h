@@ -6,12 +6,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <cstdio>
 #include <string>
 
 #include <glm/glm.hpp>
 
 #include <facet/ibl/light_extraction.h>
+#include "render/glsl_literal.h"
 #include <facet/scene/scene.h>
 
 namespace facet {
@@ -68,15 +68,9 @@ inline LightData disk_data(const DiskLight& d) {
 inline std::string packed_light_literal(const LightData& d) {
     std::string out = "PackedLight(";
     const glm::vec4* parts[] = {&d.position_range, &d.direction_type, &d.color_intensity, &d.cone};
-    char number[32];
     for (int p = 0; p < 4; ++p) {
         out += p ? ", vec4(" : "vec4(";
-        for (int c = 0; c < 4; ++c) {
-            std::snprintf(number, sizeof number, "%.9g", double((*parts[p])[c]));
-            std::string n = number;
-            if (n.find_first_of(".eEn") == std::string::npos) n += ".0";  // a float literal
-            out += (c ? ", " : "") + n;
-        }
+        for (int c = 0; c < 4; ++c) out += (c ? ", " : "") + glsl_float_literal(double((*parts[p])[c]));
         out += ")";
     }
     return out + ")";

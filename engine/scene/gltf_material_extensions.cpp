@@ -32,7 +32,43 @@ std::string number_text(double v) {
     return text;
 }
 
+// `count` finite numbers of an array member into `out`; absent: `out` untouched.
+void numbers(const tinygltf::Value& object, const char* key, int count, double* out, const std::string& where) {
+    if (!object.Has(key)) return;
+    const tinygltf::Value& a = object.Get(key);
+    if (!a.IsArray() || a.ArrayLen() != size_t(count))
+        fail(where + "." + key + " must have " + std::to_string(count) + " numbers");
+    for (int i = 0; i < count; ++i) {
+        const tinygltf::Value& v = a.Get(i);
+        if (!v.IsNumber() || !std::isfinite(v.GetNumberAsDouble()))
+            fail(where + "." + key + " must have " + std::to_string(count) + " finite numbers");
+        out[i] = v.GetNumberAsDouble();
+    }
+}
+
 }  // namespace
+
+void read_texture_transform(const tinygltf::ExtensionMap& extensions, const std::string& where, TextureRef& ref) {
+    const auto found = extensions.find("KHR_texture_transform");
+    if (found == extensions.end()) return;
+    const std::string at = where + ": KHR_texture_transform";
+    if (!found->second.IsObject()) fail(at + " must be an object");
+    const tinygltf::Value& t = found->second;
+    double offset[2] = {0.0, 0.0}, scale[2] = {1.0, 1.0};
+    numbers(t, "offset", 2, offset, at);
+    numbers(t, "scale", 2, scale, at);
+    const double rotation = number(t, "rotation", 0.0, at);
+    const double c = std::cos(rotation), s = std::sin(rotation);
+    // translation x rotation x scale: the columns R S e0, R S e1 and the offset.
+    ref.uv_transform = {float(c * scale[0]), float(s * scale[0]), float(-s * scale[1]), float(c * scale[1]),
+                        float(offset[0]), float(offset[1])};
+    if (t.Has("texCoord")) {
+        const tinygltf::Value& v = t.Get("texCoord");
+        if (!v.IsInt() || (v.GetNumberAsInt() != 0 && v.GetNumberAsInt() != 1))
+            fail(at + ".texCoord must be 0 or 1 (TEXCOORD_0 or TEXCOORD_1)");
+        ref.uv_set = uint32_t(v.GetNumberAsInt());
+    }
+}
 
 void read_dielectric_extensions(const tinygltf::Material& m, const std::string& where, Material& out,
                                 std::vector<std::string>& warnings) {

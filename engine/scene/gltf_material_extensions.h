@@ -18,6 +18,11 @@
 
 namespace facet::gltf_detail {
 
+// KHR_texture_transform on a textureInfo: offset, rotation (radians, counter-clockwise) and
+// scale into ref.uv_transform (translation x rotation x scale, the extension's matrix), and
+// texCoord, when given, into ref.uv_set (0 or 1, else an error).
+void read_texture_transform(const tinygltf::ExtensionMap& extensions, const std::string& where, TextureRef& ref);
+
 void read_dielectric_extensions(const tinygltf::Material& material, const std::string& where, Material& out,
                                 std::vector<std::string>& warnings);
 

@@ -13,8 +13,8 @@ namespace facet::gltf_detail {
 
 namespace {
 
-TextureRef texture_ref(const tinygltf::Model& model, int texture, int tex_coord, const std::string& where,
-                       const char* slot) {
+TextureRef texture_ref(const tinygltf::Model& model, int texture, int tex_coord, const tinygltf::ExtensionMap& extensions,
+                       const std::string& where, const char* slot) {
     TextureRef ref;
     if (texture == -1) return ref;
     std::string name = where + ": " + slot;
@@ -32,6 +32,7 @@ TextureRef texture_ref(const tinygltf::Model& model, int texture, int tex_coord,
     ref.image = t.source;
     ref.sampler = t.sampler;
     ref.uv_set = uint32_t(tex_coord);
+    read_texture_transform(extensions, name, ref);
     return ref;
 }
 
@@ -88,15 +89,17 @@ Material convert_material(const tinygltf::Model& model, size_t index, std::vecto
                              out.occlusion_strength, out.alpha_cutoff};
     if (!std::all_of(std::begin(factors), std::end(factors), [](float v) { return std::isfinite(v); }))
         fail(where + ": a factor is not finite (too large for floats)");
-    out.base_color_texture =
-        texture_ref(model, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, where, "baseColorTexture");
-    out.metallic_roughness_texture = texture_ref(model, pbr.metallicRoughnessTexture.index,
-                                                 pbr.metallicRoughnessTexture.texCoord, where, "metallicRoughnessTexture");
-    out.normal_texture = texture_ref(model, m.normalTexture.index, m.normalTexture.texCoord, where, "normalTexture");
-    out.occlusion_texture =
-        texture_ref(model, m.occlusionTexture.index, m.occlusionTexture.texCoord, where, "occlusionTexture");
-    out.emissive_texture =
-        texture_ref(model, m.emissiveTexture.index, m.emissiveTexture.texCoord, where, "emissiveTexture");
+    out.base_color_texture = texture_ref(model, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                                         pbr.baseColorTexture.extensions, where, "baseColorTexture");
+    out.metallic_roughness_texture =
+        texture_ref(model, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                    pbr.metallicRoughnessTexture.extensions, where, "metallicRoughnessTexture");
+    out.normal_texture = texture_ref(model, m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions,
+                                     where, "normalTexture");
+    out.occlusion_texture = texture_ref(model, m.occlusionTexture.index, m.occlusionTexture.texCoord,
+                                        m.occlusionTexture.extensions, where, "occlusionTexture");
+    out.emissive_texture = texture_ref(model, m.emissiveTexture.index, m.emissiveTexture.texCoord,
+                                       m.emissiveTexture.extensions, where, "emissiveTexture");
     return out;
 }
 

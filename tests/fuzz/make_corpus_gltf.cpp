@@ -83,7 +83,8 @@ std::string textured(const std::string& image) {
            R"({"attributes":{"POSITION":0,"TEXCOORD_0":7},"indices":5,"material":1},)"
            R"({"attributes":{"POSITION":0,"TEXCOORD_0":8},"indices":6,"material":2,"mode":4}]}],)"
            R"("materials":[{"name":"textured","pbrMetallicRoughness":{"baseColorFactor":[1,0.5,0.25,1],)"
-           R"("baseColorTexture":{"index":0},"metallicFactor":0.5,"roughnessFactor":0.25,)"
+           R"("baseColorTexture":{"index":0,"extensions":{"KHR_texture_transform":{"offset":[0.5,0],"rotation":0.3,)"
+           R"("scale":[2,2],"texCoord":0}}},"metallicFactor":0.5,"roughnessFactor":0.25,)"
            R"("metallicRoughnessTexture":{"index":0}},"normalTexture":{"index":0,"scale":0.5},)"
            R"("occlusionTexture":{"index":0,"strength":0.7},"emissiveTexture":{"index":0},"emissiveFactor":[1,1,1],)"
            R"("extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":2}}},)"
@@ -94,7 +95,8 @@ std::string textured(const std::string& image) {
            R"("textures":[{"source":0,"sampler":0}],)"
            R"("samplers":[{"magFilter":9728,"minFilter":9987,"wrapS":33648,"wrapT":33071}],)"
            R"("images":[)" + image + "],"
-           R"("extensionsUsed":["KHR_materials_emissive_strength","KHR_materials_ior","KHR_materials_specular"],)" +
+           R"("extensionsUsed":["KHR_materials_emissive_strength","KHR_materials_ior","KHR_materials_specular",)"
+           R"("KHR_texture_transform"],)" +
            kOneNode;
 }
 

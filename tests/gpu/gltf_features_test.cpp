@@ -1,6 +1,6 @@
 // The glTF core features drawn on lavapipe, each from a small file written here and
 // checked by pixels against values computed here: OPAQUE ignoring alpha, vertex colours,
-// KHR_materials_ior and KHR_materials_specular, a texture on TEXCOORD_1, a mirrored cube shaded and culled right, lines and points
+// KHR_materials_ior and KHR_materials_specular, a texture on TEXCOORD_1, KHR_texture_transform, a mirrored cube shaded and culled right, lines and points
 // drawn unlit, and a flat model framed by the default camera. Single-sample frames, so
 // that every covered pixel is exact; tolerances are stated per check.
 #include <gtest/gtest.h>
@@ -8,6 +8,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -228,6 +229,134 @@ TEST_F(GltfFeaturesTest, TextureOnTheSecondUvSet) {
     EXPECT_NEAR(p.r, 0.0f, 2e-3f);
     EXPECT_NEAR(p.g, 1.0f, 2e-3f);
     EXPECT_NEAR(p.b, 0.0f, 2e-3f);
+}
+
+// KHR_texture_transform: a 4x4 texture of distinct colours (nearest, repeat) on a quad whose
+// TEXCOORD_0 spans it once; offset, rotation and scale as the extension defines them
+// (uv' = T R S (u, v, 1)), computed here per pixel, pick the texel each covered pixel must
+// show (white furnace, Lambert: the texel's linear colour within 2e-3; pixels whose uv'
+// lies within 5% of a texel's edge are skipped). The extension's texCoord 0 overrides the
+// textureInfo's 1 (TEXCOORD_1 points at a texel the transform never shows alone).
+TEST_F(GltfFeaturesTest, TextureTransformPicksTheTexelsTheExtensionSays) {
+    const std::string png = dir.file("grid.png");
+    std::vector<unsigned char> texels;
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) texels.insert(texels.end(), {(unsigned char)(40 + 60 * i), (unsigned char)(40 + 60 * j), 128, 255});
+    auto out = OIIO::ImageOutput::create(png);
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(png, OIIO::ImageSpec(4, 4, 4, OIIO::TypeDesc::UINT8)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, texels.data()));
+    out->close();
+    auto uv_of = [](float x, float y) { return glm::vec2((x + 1.0f) / 2.0f, (1.0f - y) / 2.0f); };
+    std::vector<float> uv0;
+    for (size_t i = 0; i < 4; ++i) {
+        const glm::vec2 uv = uv_of(kQuad[3 * i], kQuad[3 * i + 1]);
+        uv0.insert(uv0.end(), {uv.x, uv.y});
+    }
+    GltfBuilder b;
+    b.add(kQuad, kFloat, "VEC3", 4);
+    b.add(kQuadIndices, kUshort, "SCALAR", 6);
+    b.add(uv0, kFloat, "VEC2", 4);
+    b.add(std::vector<float>(8, 0.01f), kFloat, "VEC2", 4);
+    const double offset[2] = {0.3, 0.1}, rotation = 0.5, scale[2] = {1.5, 0.75};
+    const std::string members =
+        mesh_file(R"("POSITION": 0, "TEXCOORD_0": 2, "TEXCOORD_1": 3)", 1,
+                  R"({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "texCoord": 1, "extensions":
+                     {"KHR_texture_transform": {"offset": [0.3, 0.1], "rotation": 0.5, "scale": [1.5, 0.75],
+                      "texCoord": 0}}}}})") +
+        R"(, "extensionsUsed": ["KHR_texture_transform"], "textures": [{"source": 0, "sampler": 0}],
+  "images": [{"uri": "grid.png"}], "samplers": [{"magFilter": 9728, "minFilter": 9728}])";
+    std::unique_ptr<RenderSession> session;
+    const RenderedImages images = render(b.write(dir, "transform", members), job("builtin:white"), true, &session);
+    ASSERT_EQ(images.hdr.size(), kSize * kSize * 4);
+    auto linear = [](int byte) {
+        const double c = byte / 255.0;
+        return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+    };
+    int checked = 0;
+    double worst = 0;
+    std::set<int> seen;
+    for (uint32_t y = 0; y < kSize; ++y)
+        for (uint32_t x = 0; x < kSize; ++x) {
+            const glm::vec3 p = on_plane(session->camera(), x, y);
+            if (std::abs(p.x) > 0.95f || std::abs(p.y) > 0.95f) continue;
+            const glm::vec2 uv = uv_of(p.x, p.y);
+            const double c = std::cos(rotation), s = std::sin(rotation);
+            const double u = offset[0] + c * scale[0] * uv.x - s * scale[1] * uv.y;
+            const double v = offset[1] + s * scale[0] * uv.x + c * scale[1] * uv.y;
+            const double fu = (u - std::floor(u)) * 4.0, fv = (v - std::floor(v)) * 4.0;
+            auto near_edge = [](double f) { return std::abs(f - std::round(f)) < 0.2; };
+            if (near_edge(fu) || near_edge(fv)) continue;
+            const int i = int(fu), j = int(fv);
+            seen.insert(j * 4 + i);
+            const Pixel px = at(images.hdr, x, y);
+            worst = std::max({worst, std::abs(px.r - linear(40 + 60 * i)), std::abs(px.g - linear(40 + 60 * j)),
+                              std::abs(px.b - linear(128))});
+            ++checked;
+        }
+    EXPECT_GT(checked, 300);
+    EXPECT_GE(seen.size(), 10u);  // most of the grid, rotated and repeated
+    EXPECT_LT(worst, 2e-3);
+    // What the loader read: the extension's matrix and the overriding uv set.
+    const Result<Scene> scene = load_gltf(dir.file("transform.gltf"));
+    ASSERT_TRUE(scene.ok());
+    const TextureRef& ref = scene->materials[0].base_color_texture;
+    const double c = std::cos(rotation), s = std::sin(rotation);
+    const double expected[6] = {c * scale[0], s * scale[0], -s * scale[1], c * scale[1], offset[0], offset[1]};
+    for (int k = 0; k < 6; ++k) EXPECT_NEAR(ref.uv_transform[size_t(k)], expected[k], 1e-6) << k;
+    EXPECT_EQ(ref.uv_set, 0u);
+    // A uv set the vertices cannot have is an error naming the texture.
+    std::string bad = members;
+    bad.replace(bad.find(R"("texCoord": 0)"), 13, R"("texCoord": 2)");
+    const std::string bad_path = b.write(dir, "bad_transform", bad);
+    const Result<Scene> refused = load_gltf(bad_path);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_EQ(refused.error().message, bad_path + ": material 0: baseColorTexture: KHR_texture_transform.texCoord must "
+                                                  "be 0 or 1 (TEXCOORD_0 or TEXCOORD_1)");
+}
+
+// A normal map read through a rotated transform keeps its tilt on the texture's own axes:
+// one texel tilted towards +u' (0.6, 0, 0.8) on a quad whose u runs along +x and v along
+// -y; rotated by 90 degrees, u' runs along -v, so the world normal is (0, 0.6, 0.8), where
+// the untransformed map gives (0.6, 0, 0.8) (the normal view, within 0.02: 8-bit texel).
+TEST_F(GltfFeaturesTest, RotatedNormalMapTurnsItsTangentFrame) {
+    const std::string png = dir.file("tilt.png");
+    const unsigned char texel[] = {204, 128, 230, 255};
+    auto out = OIIO::ImageOutput::create(png);
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(png, OIIO::ImageSpec(1, 1, 4, OIIO::TypeDesc::UINT8)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, texel));
+    out->close();
+    std::vector<float> uv0;
+    for (size_t i = 0; i < 4; ++i) uv0.insert(uv0.end(), {(kQuad[3 * i] + 1.0f) / 2.0f, (1.0f - kQuad[3 * i + 1]) / 2.0f});
+    GltfBuilder b;
+    b.add(kQuad, kFloat, "VEC3", 4);
+    b.add(kQuadIndices, kUshort, "SCALAR", 6);
+    b.add(uv0, kFloat, "VEC2", 4);
+    b.add(std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, kFloat, "VEC3", 4);  // NORMAL
+    auto normal_at_centre = [&](const std::string& name, const std::string& extension) {
+        const std::string members =
+            mesh_file(R"("POSITION": 0, "TEXCOORD_0": 2, "NORMAL": 3)", 1,
+                      R"({"normalTexture": {"index": 0)" + extension + "}}") +
+            R"(, "textures": [{"source": 0, "sampler": 0}], "images": [{"uri": "tilt.png"}],
+  "samplers": [{"magFilter": 9728, "minFilter": 9728}])";
+        RenderJob views = job("builtin:white");
+        views.frame.views = {View::normal};
+        const RenderedImages images = render(b.write(dir, name, members), views);
+        EXPECT_EQ(images.views.size(), 1u);
+        if (images.views.size() != 1) return glm::vec3(0.0f);
+        const Pixel p = at(images.views[0].second, 32, 32);
+        return glm::vec3(p.r, p.g, p.b);
+    };
+    const glm::vec3 plain = normal_at_centre("tilt_plain", "");
+    EXPECT_NEAR(plain.x, 0.6f, 0.02f);
+    EXPECT_NEAR(plain.y, 0.0f, 0.02f);
+    EXPECT_NEAR(plain.z, 0.8f, 0.02f);
+    const glm::vec3 turned =
+        normal_at_centre("tilt_rotated", R"(, "extensions": {"KHR_texture_transform": {"rotation": 1.5707963}})");
+    EXPECT_NEAR(turned.x, 0.0f, 0.02f);
+    EXPECT_NEAR(turned.y, 0.6f, 0.02f);
+    EXPECT_NEAR(turned.z, 0.8f, 0.02f);
 }
 
 // A unit cube, single-sided, mirrored by its node (scale -1 in x), seen from 45 degrees

@@ -44,7 +44,11 @@ struct TextureRef {
     int32_t image = -1;    // index into Scene::images; -1 = none
     int32_t sampler = -1;  // index into Scene::samplers; -1 = default sampler
     uint32_t uv_set = 0;   // 0: Vertex::uv (TEXCOORD_0), 1: Vertex::uv1 (TEXCOORD_1); higher sets are refused
+    // KHR_texture_transform: uv' = M (u, v, 1), M = translation x rotation x scale, column-major
+    // 3x2 (a, b, c, d, tx, ty: u' = a u + c v + tx, v' = b u + d v + ty).
+    std::array<float, 6> uv_transform{1.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f};
     bool valid() const { return image >= 0; }
+    bool transformed() const { return uv_transform != std::array<float, 6>{1.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f}; }
 };
 
 enum class AlphaMode { opaque, mask, blend };
