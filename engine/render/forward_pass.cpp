@@ -145,7 +145,7 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     // front faces are clockwise on screen, so it culls the other side.
     const bool mirrored = glm::determinant(glm::mat3(in.world)) < 0.0f;
     define_if(mirrored && m.double_sided, "MIRRORED");
-    define_if(primitive.topology != Topology::triangles, "UNLIT");
+    define_if(m.unlit || primitive.topology != Topology::triangles, "UNLIT");
     define_if(primitive.topology == Topology::points, "POINTS");
     define_if(ibl, "USE_IBL");
     define_if(settings.brdf == BrdfModel::thesis, "BRDF_THESIS");

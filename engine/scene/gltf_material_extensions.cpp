@@ -70,6 +70,16 @@ void read_texture_transform(const tinygltf::ExtensionMap& extensions, const std:
     }
 }
 
+void read_unlit(const tinygltf::Material& m, Material& out) {
+    if (m.extensions.find("KHR_materials_unlit") == m.extensions.end()) return;
+    out.unlit = true;
+    out.emissive = glm::vec3(0.0f);
+    out.emissive_texture = {};
+    out.normal_texture = {};
+    out.occlusion_texture = {};
+    out.metallic_roughness_texture = {};
+}
+
 void read_dielectric_extensions(const tinygltf::Material& m, const std::string& where, Material& out,
                                 std::vector<std::string>& warnings) {
     if (const tinygltf::Value* ior_ext = extension(m, "KHR_materials_ior", where)) {

@@ -23,6 +23,11 @@ namespace facet::gltf_detail {
 // texCoord, when given, into ref.uv_set (0 or 1, else an error).
 void read_texture_transform(const tinygltf::ExtensionMap& extensions, const std::string& where, TextureRef& ref);
 
+// KHR_materials_unlit: out.unlit, with what lights the surface (metallic-roughness,
+// normal, occlusion and emissive inputs) cleared: only base colour, alpha and vertex
+// colour count (the extension's definition).
+void read_unlit(const tinygltf::Material& material, Material& out);
+
 void read_dielectric_extensions(const tinygltf::Material& material, const std::string& where, Material& out,
                                 std::vector<std::string>& warnings);
 

@@ -100,6 +100,7 @@ Material convert_material(const tinygltf::Model& model, size_t index, std::vecto
                                         m.occlusionTexture.extensions, where, "occlusionTexture");
     out.emissive_texture = texture_ref(model, m.emissiveTexture.index, m.emissiveTexture.texCoord,
                                        m.emissiveTexture.extensions, where, "emissiveTexture");
+    read_unlit(m, out);  // last: it clears what the others read
     return out;
 }
 

@@ -5,8 +5,9 @@
 // Variants (defines) carry only the features a material uses: HAS_BASE_COLOR_MAP,
 // HAS_METALLIC_ROUGHNESS_MAP, HAS_NORMAL_MAP, HAS_OCCLUSION_MAP, HAS_EMISSIVE_MAP,
 // ALPHA_OPAQUE (alpha written as 1), ALPHA_MASK, ALPHA_BLEND, DOUBLE_SIDED, MIRRORED (the
-// instance's world matrix mirrors: its front faces wind clockwise), UNLIT (points and
-// lines: base colour x vertex colour + emissive), <SLOT>_UV1 (a texture sampled with
+// instance's world matrix mirrors: its front faces wind clockwise), UNLIT (points, lines and
+// KHR_materials_unlit: base colour x vertex colour + emissive, which the loader clears for
+// unlit materials), <SLOT>_UV1 (a texture sampled with
 // TEXCOORD_1), <SLOT>_TRANSFORM and NORMAL_TANGENT_FRAME (KHR_texture_transform), USE_IBL, BRDF_THESIS (the thesis' model instead
 // of glTF's), MULTISCATTER (energy compensation), DOMINANT_DIRECTION (bent specular
 // lookup), VIEW (what is written: render/views.glsl).
@@ -297,7 +298,11 @@ void main() {
 #elif VIEW == VIEW_BASECOLOR
     out_color = vec4(s.albedo, surface.alpha);
 #elif VIEW == VIEW_METALLIC
+#ifdef UNLIT
+    out_color = vec4(vec3(s.metallic), 0.0);  // alpha 0 marks an unlit surface (the reference mode copies it)
+#else
     out_color = vec4(vec3(s.metallic), 1.0);
+#endif
 #elif VIEW == VIEW_ROUGHNESS
     out_color = vec4(vec3(s.roughness), 1.0);
 #elif VIEW == VIEW_OCCLUSION

@@ -166,12 +166,15 @@ void main() {
     s.NdotV = clamp(dot(s.shading.n, s.v), 0.0, 1.0);
     s.p_specular = s.shading.specular_weight <= 0.0 ? 0.0 : mix(0.5, 1.0, s.shading.metallic);
     vec3 p = position.xyz;
+    // An unlit surface (KHR_materials_unlit, points, lines: the metallic view's alpha 0) is
+    // its base colour and emission, exactly, with nothing to sample.
+    bool unlit = texelFetch(metallic_view, pixel, 0).a < 0.5;
 
     uint rng = hash(uint(pixel.x) * 1973u + uint(pixel.y) * 9277u + params.batch.y * 26699u);
     float shift[7];
     for (uint d = 0u; d < 7u; ++d) shift[d] = random(rng);
     bool has_env = params.env.x > 0u;
-    for (uint i = 0u; i < count && has_env; ++i) {
+    for (uint i = 0u; i < count && has_env && !unlit; ++i) {
         // BRDF sample.
         vec3 l = sample_brdf(s, vec3(kronecker(i, 0u, shift[0]), kronecker(i, 1u, shift[1]), kronecker(i, 2u, shift[2])));
         float pb = brdf_pdf(s, l);
@@ -189,7 +192,7 @@ void main() {
         }
     }
     vec3 batch_mean = count > 0u ? batch_sum / float(count) : vec3(0.0);
-    vec3 exact = punctual(s, p) + texelFetch(emissive_view, pixel, 0).rgb;
+    vec3 exact = (unlit ? s.shading.albedo : punctual(s, p)) + texelFetch(emissive_view, pixel, 0).rgb;
     vec4 acc = imageLoad(accumulation, pixel);
     imageStore(accumulation, pixel, vec4(acc.rgb + batch_sum + exact * float(count), acc.a + float(count)));
     // Batch means give the noise estimate: their spread over batches of equal size.

@@ -1,5 +1,5 @@
-// KHR_materials_ior and KHR_materials_specular read into the dielectric lobe's F0 and
-// strength (scene/gltf_material_extensions.h), against the extensions' formulas computed
+// KHR_materials_unlit read as a flag that clears the lit inputs; KHR_materials_ior and
+// KHR_materials_specular read into the dielectric lobe's F0 and strength (scene/gltf_material_extensions.h), against the extensions' formulas computed
 // here: F0 = ((ior - 1) / (ior + 1))^2, then min(F0 x specularColor, 1), and the
 // specular weight = specularFactor; what is not drawn is a warning, invalid values an
 // error naming the material.
@@ -27,11 +27,11 @@ struct TempDir {
 // One triangle whose material 0 has `extensions` (a JSON object's members).
 Result<Scene> load_material(const TempDir& dir, const std::string& extensions) {
     const std::string text = R"({"asset": {"version": "2.0"},
-  "extensionsUsed": ["KHR_materials_ior", "KHR_materials_specular"],
+  "extensionsUsed": ["KHR_materials_ior", "KHR_materials_specular", "KHR_materials_unlit"],
   "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
   "bufferViews": [{"buffer": 0, "byteLength": 36}],
   "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}],
-  "materials": [{"name": "glass", "extensions": {)" + extensions + R"(}}],
+  "materials": [{"name": "glass", "emissiveFactor": [1, 0.5, 0.25], "extensions": {)" + extensions + R"(}}],
   "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
   "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0})";
     const fs::path path = dir.path / "model.gltf";
@@ -94,6 +94,18 @@ TEST(GltfMaterialExtensions, WhatIsNotDrawnIsAWarningNamingIt) {
                                   "alone are)");
     EXPECT_NE(scene->warnings[2].find("specularColorTexture is not drawn"), std::string::npos);
     EXPECT_NEAR(scene->materials[0].dielectric_f0, 0.04, 1e-7);  // the largest component, 1
+}
+
+TEST(GltfMaterialExtensions, UnlitKeepsTheBaseColourAloneAndIsNoWarning) {
+    TempDir dir;
+    const Result<Scene> plain = load_material(dir, "");
+    ASSERT_TRUE(plain.ok()) << plain.error().message;
+    EXPECT_FALSE(plain->materials[0].unlit);
+    const Result<Scene> scene = load_material(dir, R"("KHR_materials_unlit": {})");
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    EXPECT_TRUE(scene->materials[0].unlit);
+    EXPECT_EQ(scene->materials[0].emissive, glm::vec3(0.0f));  // the extension: base colour alone
+    EXPECT_TRUE(scene->warnings.empty());
 }
 
 TEST(GltfMaterialExtensions, InvalidValuesAreErrorsNamingTheMaterial) {

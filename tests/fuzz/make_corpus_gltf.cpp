@@ -91,12 +91,12 @@ std::string textured(const std::string& image) {
            R"({"alphaMode":"MASK","alphaCutoff":0.3,"doubleSided":true,"normalTexture":{"index":0},)"
            R"("extensions":{"KHR_materials_ior":{"ior":1.33},"KHR_materials_specular":{"specularFactor":0.5,)"
            R"("specularColorFactor":[1,0.5,0.5],"specularTexture":{"index":0}}}},)"
-           R"({"alphaMode":"BLEND"}],)"
+           R"({"alphaMode":"BLEND","extensions":{"KHR_materials_unlit":{}}}],)"
            R"("textures":[{"source":0,"sampler":0}],)"
            R"("samplers":[{"magFilter":9728,"minFilter":9987,"wrapS":33648,"wrapT":33071}],)"
            R"("images":[)" + image + "],"
            R"("extensionsUsed":["KHR_materials_emissive_strength","KHR_materials_ior","KHR_materials_specular",)"
-           R"("KHR_texture_transform"],)" +
+           R"("KHR_materials_unlit","KHR_texture_transform"],)" +
            kOneNode;
 }
 

@@ -1,6 +1,7 @@
 // The glTF core features drawn on lavapipe, each from a small file written here and
 // checked by pixels against values computed here: OPAQUE ignoring alpha, vertex colours,
-// KHR_materials_ior and KHR_materials_specular, a texture on TEXCOORD_1, KHR_texture_transform, a mirrored cube shaded and culled right, lines and points
+// KHR_materials_ior and KHR_materials_specular, KHR_materials_unlit (frame and reference
+// mode), a texture on TEXCOORD_1, KHR_texture_transform, a mirrored cube shaded and culled right, lines and points
 // drawn unlit, and a flat model framed by the default camera. Single-sample frames, so
 // that every covered pixel is exact; tolerances are stated per check.
 #include <gtest/gtest.h>
@@ -201,6 +202,43 @@ TEST_F(GltfFeaturesTest, IorAndSpecularExtensionsReachTheShading) {
         render(b.write(dir, "plain", mesh_file(R"("POSITION": 0)", 1, material(""))), job("builtin:white"), false);
     ASSERT_EQ(plain.hdr.size(), kSize * kSize * 4);
     EXPECT_GT(off_base(plain), 0.01f);
+}
+
+// KHR_materials_unlit: base colour only, whatever lights it (a sun, the sky, a light) and
+// whatever else the material says (emission, metal): the frame and the reference mode both
+// show the base colour exactly (1e-5), where the same material lit does not (more than 5%).
+TEST_F(GltfFeaturesTest, UnlitMaterialIsItsBaseColourInTheFrameAndTheReference) {
+    GltfBuilder b;
+    b.add(kQuad, kFloat, "VEC3", 4);
+    b.add(kQuadIndices, kUshort, "SCALAR", 6);
+    auto material = [](const std::string& extensions) {
+        return R"({"pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.5, 0.9, 1], "metallicFactor": 1,
+                   "roughnessFactor": 0.1}, "emissiveFactor": [1, 1, 1], "extensions": {)" + extensions + "}}";
+    };
+    RenderJob lit = job("builtin:sky");
+    Light sun;
+    sun.direction = glm::normalize(glm::vec3(0.0f, -1.0f, -1.0f));
+    sun.intensity = 3.0f;
+    lit.extra_lights = {sun};
+    std::unique_ptr<RenderSession> session;
+    const RenderedImages unlit = render(
+        b.write(dir, "unlit", mesh_file(R"("POSITION": 0)", 1, material(R"("KHR_materials_unlit": {})"))), lit, false,
+        &session);
+    ASSERT_EQ(unlit.hdr.size(), kSize * kSize * 4);
+    const glm::vec3 base(0.2f, 0.5f, 0.9f);
+    auto off_base = [&](const std::vector<float>& hdr) {
+        const Pixel q = at(hdr, 32, 32);
+        return std::max({std::abs(q.r - base.x), std::abs(q.g - base.y), std::abs(q.b - base.z)});
+    };
+    EXPECT_LT(off_base(unlit.hdr), 1e-5f);
+    ASSERT_TRUE(session);
+    const auto reference = session->render_reference(ReferenceSettings{});
+    ASSERT_TRUE(reference) << reference.error().message;
+    EXPECT_LT(off_base(reference->hdr), 1e-5f);
+    const RenderedImages shaded =
+        render(b.write(dir, "lit", mesh_file(R"("POSITION": 0)", 1, material(""))), lit, false);
+    ASSERT_EQ(shaded.hdr.size(), kSize * kSize * 4);
+    EXPECT_GT(off_base(shaded.hdr), 0.05f);
 }
 
 // TEXCOORD_0 points at the texture's red half, TEXCOORD_1 at its green half: the material

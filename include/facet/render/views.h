@@ -13,7 +13,7 @@ enum class View : int {
     normal = 1,       // world space, unit
     position = 2,     // world space, metres
     basecolor = 3,
-    metallic = 4,
+    metallic = 4,     // alpha 0 marks an unlit surface (KHR_materials_unlit, points, lines)
     roughness = 5,
     occlusion = 6,
     emissive = 7,

@@ -73,6 +73,9 @@ struct Material {
     // Ambient occlusion as a factor (the thesis' "AO" slider), times the occlusion
     // texture's value where there is one.
     float occlusion = 1.0f;
+    // KHR_materials_unlit: the colour is base colour x vertex colour, lighting ignored (the
+    // loader clears the other PBR inputs, which are fallbacks for viewers without it).
+    bool unlit = false;
     TextureRef base_color_texture;          // sRGB
     TextureRef metallic_roughness_texture;  // linear: G = roughness, B = metalness
     TextureRef normal_texture;              // linear, tangent space
