@@ -18,10 +18,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
-    fs::path path = fs::temp_directory_path() / ("facet_gltf_material_ext_" + std::to_string(::getpid()));
-    TempDir() { fs::create_directories(path); }
-    ~TempDir() { fs::remove_all(path); }
+struct TempDir : test::GltfTempDir {
+    TempDir() : GltfTempDir("gltf_material_ext") {}
 };
 
 // One triangle whose material 0 has `extensions` (a JSON object's members).

@@ -34,6 +34,15 @@ Pixel at(const std::vector<float>& rgba, uint32_t x, uint32_t y) {
     return {p[0], p[1], p[2], p[3]};
 }
 
+// An RGBA8 PNG of `width` x `height` texels, row 0 the image's top (glTF's v = 0).
+::testing::AssertionResult write_png(const std::string& path, int width, int height, const unsigned char* rgba) {
+    auto out = OIIO::ImageOutput::create(path);
+    if (!out || !out->open(path, OIIO::ImageSpec(width, height, 4, OIIO::TypeDesc::UINT8)) ||
+        !out->write_image(OIIO::TypeDesc::UINT8, rgba) || !out->close())
+        return ::testing::AssertionFailure() << path << ": " << OIIO::geterror();
+    return ::testing::AssertionSuccess();
+}
+
 // A 2x2 metre quad at z = 0 facing +Z, with optional extra attributes.
 const std::vector<float> kQuad = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
 const std::vector<uint16_t> kQuadIndices = {0, 1, 2, 0, 2, 3};
@@ -246,11 +255,7 @@ TEST_F(GltfFeaturesTest, UnlitMaterialIsItsBaseColourInTheFrameAndTheReference) 
 TEST_F(GltfFeaturesTest, TextureOnTheSecondUvSet) {
     const std::string png = dir.file("halves.png");
     const unsigned char texels[] = {255, 0, 0, 255, 0, 255, 0, 255};
-    auto out = OIIO::ImageOutput::create(png);
-    ASSERT_TRUE(out);
-    ASSERT_TRUE(out->open(png, OIIO::ImageSpec(2, 1, 4, OIIO::TypeDesc::UINT8)));
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, texels));
-    out->close();
+    ASSERT_TRUE(write_png(png, 2, 1, texels));
     GltfBuilder b;
     b.add(kQuad, kFloat, "VEC3", 4);
     b.add(kQuadIndices, kUshort, "SCALAR", 6);
@@ -280,11 +285,7 @@ TEST_F(GltfFeaturesTest, TextureTransformPicksTheTexelsTheExtensionSays) {
     std::vector<unsigned char> texels;
     for (int j = 0; j < 4; ++j)
         for (int i = 0; i < 4; ++i) texels.insert(texels.end(), {(unsigned char)(40 + 60 * i), (unsigned char)(40 + 60 * j), 128, 255});
-    auto out = OIIO::ImageOutput::create(png);
-    ASSERT_TRUE(out);
-    ASSERT_TRUE(out->open(png, OIIO::ImageSpec(4, 4, 4, OIIO::TypeDesc::UINT8)));
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, texels.data()));
-    out->close();
+    ASSERT_TRUE(write_png(png, 4, 4, texels.data()));
     auto uv_of = [](float x, float y) { return glm::vec2((x + 1.0f) / 2.0f, (1.0f - y) / 2.0f); };
     std::vector<float> uv0;
     for (size_t i = 0; i < 4; ++i) {
@@ -360,11 +361,7 @@ TEST_F(GltfFeaturesTest, TextureTransformPicksTheTexelsTheExtensionSays) {
 TEST_F(GltfFeaturesTest, RotatedNormalMapTurnsItsTangentFrame) {
     const std::string png = dir.file("tilt.png");
     const unsigned char texel[] = {204, 128, 230, 255};
-    auto out = OIIO::ImageOutput::create(png);
-    ASSERT_TRUE(out);
-    ASSERT_TRUE(out->open(png, OIIO::ImageSpec(1, 1, 4, OIIO::TypeDesc::UINT8)));
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, texel));
-    out->close();
+    ASSERT_TRUE(write_png(png, 1, 1, texel));
     std::vector<float> uv0;
     for (size_t i = 0; i < 4; ++i) uv0.insert(uv0.end(), {(kQuad[3 * i] + 1.0f) / 2.0f, (1.0f - kQuad[3 * i + 1]) / 2.0f});
     GltfBuilder b;
@@ -463,11 +460,7 @@ TEST_F(GltfFeaturesTest, MirroredCubeShowsItsFrontFaces) {
 TEST_F(GltfFeaturesTest, MirroredNormalMapKeepsItsBitangent) {
     const std::string png = dir.file("tilt.png");
     const unsigned char texel[] = {128, 191, 238, 255};
-    auto out = OIIO::ImageOutput::create(png);
-    ASSERT_TRUE(out);
-    ASSERT_TRUE(out->open(png, OIIO::ImageSpec(1, 1, 4, OIIO::TypeDesc::UINT8)));
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, texel));
-    out->close();
+    ASSERT_TRUE(write_png(png, 1, 1, texel));
     const glm::vec3 tangent_space = glm::normalize(glm::vec3(texel[0], texel[1], texel[2]) / 255.0f * 2.0f - 1.0f);
     const glm::vec3 n = glm::normalize(glm::vec3(0.0f, tangent_space.y, tangent_space.z));  // x: along the tangent
     ASSERT_NEAR(tangent_space.x, 0.0f, 0.01f);
