@@ -122,18 +122,22 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
                                  TextureSlot::occlusion, TextureSlot::emissive};
     const char* maps[] = {"HAS_BASE_COLOR_MAP", "HAS_METALLIC_ROUGHNESS_MAP", "HAS_NORMAL_MAP", "HAS_OCCLUSION_MAP",
                           "HAS_EMISSIVE_MAP"};
-    const char* uv1[] = {"BASE_COLOR_UV1", "METALLIC_ROUGHNESS_UV1", "NORMAL_UV1", "OCCLUSION_UV1", "EMISSIVE_UV1"};
-    const char* transforms[] = {"BASE_COLOR_TRANSFORM", "METALLIC_ROUGHNESS_TRANSFORM", "NORMAL_TRANSFORM",
-                                "OCCLUSION_TRANSFORM", "EMISSIVE_TRANSFORM"};
+    const char* uvs[] = {"BASE_COLOR_UV", "METALLIC_ROUGHNESS_UV", "NORMAL_UV", "OCCLUSION_UV", "EMISSIVE_UV"};
     for (size_t t = 0; t < 5; ++t) {
-        const bool has = scene.has_texture(material, slots[t]);
-        define_if(has, maps[t]);
-        define_if(has && refs[t]->uv_set == 1, uv1[t]);
+        if (!scene.has_texture(material, slots[t])) continue;
+        define_if(true, maps[t]);
+        // The texture's coordinates where they are not TEXCOORD_0 as is: the uv set, then
         // KHR_texture_transform as a constant of the material's pipeline (no buffer read).
-        if (has && refs[t]->transformed()) {
-            defines.push_back({transforms[t], uv_transform_literal(refs[t]->uv_transform)});
+        const TextureRef& ref = *refs[t];
+        const char* set = ref.uv_set == 1 ? "in_uv1" : "in_uv";
+        if (ref.transformed()) {
+            std::string uv = "(";
+            uv.append(uv_transform_literal(ref.uv_transform)).append(" * vec3(").append(set).append(", 1.0))");
+            defines.push_back({uvs[t], uv});
             if (slots[t] == TextureSlot::normal)
-                defines.push_back({"NORMAL_TANGENT_FRAME", tangent_frame_literal(refs[t]->uv_transform)});
+                defines.push_back({"NORMAL_TANGENT_FRAME", tangent_frame_literal(ref.uv_transform)});
+        } else if (ref.uv_set == 1) {
+            defines.push_back({uvs[t], set});
         }
     }
     define_if(m.alpha_mode == AlphaMode::opaque, "ALPHA_OPAQUE");

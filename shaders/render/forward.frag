@@ -7,9 +7,9 @@
 // ALPHA_OPAQUE (alpha written as 1), ALPHA_MASK, ALPHA_BLEND, DOUBLE_SIDED, MIRRORED (the
 // instance's world matrix mirrors: its front faces wind clockwise), UNLIT (points, lines and
 // KHR_materials_unlit: base colour x vertex colour + emissive, which the loader clears for
-// unlit materials), <SLOT>_UV1 (a texture sampled with
-// TEXCOORD_1), <SLOT>_TRANSFORM and NORMAL_TANGENT_FRAME (KHR_texture_transform), USE_IBL, BRDF_THESIS (the thesis' model instead
-// of glTF's), MULTISCATTER (energy compensation), DOMINANT_DIRECTION (bent specular
+// unlit materials), <SLOT>_UV (a texture's coordinates: its uv set and
+// KHR_texture_transform) and NORMAL_TANGENT_FRAME, USE_IBL, BRDF_THESIS (the thesis' model
+// instead of glTF's), MULTISCATTER (energy compensation), DOMINANT_DIRECTION (bent specular
 // lookup), VIEW (what is written: render/views.glsl).
 #include "facet/shading.glsl"
 #include "render/forward_interface.glsl"
@@ -90,57 +90,23 @@ layout(location = 3) in vec4 in_tangent;
 layout(location = 4) in vec4 in_color;
 layout(location = 5) in vec2 in_uv1;
 
-// Each texture's uv set (glTF's texCoord, <SLOT>_UV1), then its KHR_texture_transform
-// (<SLOT>_TRANSFORM, a mat3x2 constant: uv' = M (u, v, 1)).
-#ifdef BASE_COLOR_UV1
-#define BASE_COLOR_UV_SET in_uv1
-#else
-#define BASE_COLOR_UV_SET in_uv
+// Each texture's coordinates, <SLOT>_UV: TEXCOORD_0 unless the material's pipeline says
+// otherwise (render/forward_pass.cpp: TEXCOORD_1, and KHR_texture_transform's matrix as a
+// constant, (mat3x2(...) * vec3(in_uv1, 1.0))).
+#ifndef BASE_COLOR_UV
+#define BASE_COLOR_UV in_uv
 #endif
-#ifdef METALLIC_ROUGHNESS_UV1
-#define METALLIC_ROUGHNESS_UV_SET in_uv1
-#else
-#define METALLIC_ROUGHNESS_UV_SET in_uv
+#ifndef METALLIC_ROUGHNESS_UV
+#define METALLIC_ROUGHNESS_UV in_uv
 #endif
-#ifdef NORMAL_UV1
-#define NORMAL_UV_SET in_uv1
-#else
-#define NORMAL_UV_SET in_uv
+#ifndef NORMAL_UV
+#define NORMAL_UV in_uv
 #endif
-#ifdef OCCLUSION_UV1
-#define OCCLUSION_UV_SET in_uv1
-#else
-#define OCCLUSION_UV_SET in_uv
+#ifndef OCCLUSION_UV
+#define OCCLUSION_UV in_uv
 #endif
-#ifdef EMISSIVE_UV1
-#define EMISSIVE_UV_SET in_uv1
-#else
-#define EMISSIVE_UV_SET in_uv
-#endif
-#ifdef BASE_COLOR_TRANSFORM
-#define BASE_COLOR_UV (BASE_COLOR_TRANSFORM * vec3(BASE_COLOR_UV_SET, 1.0))
-#else
-#define BASE_COLOR_UV BASE_COLOR_UV_SET
-#endif
-#ifdef METALLIC_ROUGHNESS_TRANSFORM
-#define METALLIC_ROUGHNESS_UV (METALLIC_ROUGHNESS_TRANSFORM * vec3(METALLIC_ROUGHNESS_UV_SET, 1.0))
-#else
-#define METALLIC_ROUGHNESS_UV METALLIC_ROUGHNESS_UV_SET
-#endif
-#ifdef NORMAL_TRANSFORM
-#define NORMAL_UV (NORMAL_TRANSFORM * vec3(NORMAL_UV_SET, 1.0))
-#else
-#define NORMAL_UV NORMAL_UV_SET
-#endif
-#ifdef OCCLUSION_TRANSFORM
-#define OCCLUSION_UV (OCCLUSION_TRANSFORM * vec3(OCCLUSION_UV_SET, 1.0))
-#else
-#define OCCLUSION_UV OCCLUSION_UV_SET
-#endif
-#ifdef EMISSIVE_TRANSFORM
-#define EMISSIVE_UV (EMISSIVE_TRANSFORM * vec3(EMISSIVE_UV_SET, 1.0))
-#else
-#define EMISSIVE_UV EMISSIVE_UV_SET
+#ifndef EMISSIVE_UV
+#define EMISSIVE_UV in_uv
 #endif
 
 layout(location = 0) out vec4 out_color;

@@ -47,6 +47,20 @@ Pixel at(const std::vector<float>& rgba, uint32_t x, uint32_t y) {
 const std::vector<float> kQuad = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
 const std::vector<uint16_t> kQuadIndices = {0, 1, 2, 0, 2, 3};
 
+// A builder holding the quad's positions (accessor 0) and indices (accessor 1).
+GltfBuilder quad_builder() {
+    GltfBuilder b;
+    b.add(kQuad, kFloat, "VEC3", 4);
+    b.add(kQuadIndices, kUshort, "SCALAR", 6);
+    return b;
+}
+
+// The largest per-channel distance of the centre pixel from `colour`.
+float centre_off(const std::vector<float>& rgba, glm::vec3 colour) {
+    const Pixel q = at(rgba, kSize / 2, kSize / 2);
+    return std::max({std::abs(q.r - colour.x), std::abs(q.g - colour.y), std::abs(q.b - colour.z)});
+}
+
 std::string mesh_file(const std::string& attributes, int indices, const std::string& material, int mode = 4,
                       const std::string& node = R"({"mesh": 0})") {
     std::string primitive = R"({"attributes": {)" + attributes + R"(}, "material": 0, "mode": )" + std::to_string(mode);
@@ -99,9 +113,7 @@ protected:
 
 // glTF: "OPAQUE: the rendered output is fully opaque and any alpha value is ignored".
 TEST_F(GltfFeaturesTest, OpaqueMaterialWithAlphaPointThreeWritesAlphaOne) {
-    GltfBuilder b;
-    b.add(kQuad, kFloat, "VEC3", 4);
-    b.add(kQuadIndices, kUshort, "SCALAR", 6);
+    GltfBuilder b = quad_builder();
     const std::string emissive = R"("emissiveFactor": [0.2, 0.4, 0.6], "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, )";
     const RenderedImages opaque =
         render(b.write(dir, "opaque", mesh_file(R"("POSITION": 0)", 1, "{" + emissive + "0.3]}}")), job("none"), false);
@@ -144,9 +156,7 @@ TEST_F(GltfFeaturesTest, VertexColouredQuad) {
         const glm::vec3 c = field({kQuad[3 * i], kQuad[3 * i + 1], 0.0f});
         colours.insert(colours.end(), {c.x, c.y, c.z});
     }
-    GltfBuilder b;
-    b.add(kQuad, kFloat, "VEC3", 4);
-    b.add(kQuadIndices, kUshort, "SCALAR", 6);
+    GltfBuilder b = quad_builder();
     b.add(colours, kFloat, "VEC3", 4);
     const glm::vec3 base(1.0f, 0.8f, 1.0f);
     std::unique_ptr<RenderSession> session;
@@ -177,9 +187,7 @@ TEST_F(GltfFeaturesTest, VertexColouredQuad) {
 // Lambert and shows its base colour (within 2e-3, as VertexColouredQuad), where the same
 // material without the extension shows more than 1% off it (its specular lobe).
 TEST_F(GltfFeaturesTest, IorAndSpecularExtensionsReachTheShading) {
-    GltfBuilder b;
-    b.add(kQuad, kFloat, "VEC3", 4);
-    b.add(kQuadIndices, kUshort, "SCALAR", 6);
+    GltfBuilder b = quad_builder();
     auto material = [](const std::string& extensions) {
         return R"({"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.6, 0.7, 1], "metallicFactor": 0,
                    "roughnessFactor": 0.5}, "extensions": {)" + extensions + "}}";
@@ -198,28 +206,22 @@ TEST_F(GltfFeaturesTest, IorAndSpecularExtensionsReachTheShading) {
     EXPECT_NEAR(p.b, r * r, 1e-6);
     EXPECT_NEAR(p.a, 0.5, 1e-6);
     const glm::vec3 base(0.5f, 0.6f, 0.7f);
-    auto off_base = [&](const RenderedImages& images) {
-        const Pixel q = at(images.hdr, 32, 32);
-        return std::max({std::abs(q.r - base.x), std::abs(q.g - base.y), std::abs(q.b - base.z)});
-    };
     const RenderedImages lambert = render(
         b.write(dir, "lambert", mesh_file(R"("POSITION": 0)", 1, material(R"("KHR_materials_specular": {"specularFactor": 0})"))),
         job("builtin:white"), false);
     ASSERT_EQ(lambert.hdr.size(), kSize * kSize * 4);
-    EXPECT_LT(off_base(lambert), 2e-3f);
+    EXPECT_LT(centre_off(lambert.hdr, base), 2e-3f);
     const RenderedImages plain =
         render(b.write(dir, "plain", mesh_file(R"("POSITION": 0)", 1, material(""))), job("builtin:white"), false);
     ASSERT_EQ(plain.hdr.size(), kSize * kSize * 4);
-    EXPECT_GT(off_base(plain), 0.01f);
+    EXPECT_GT(centre_off(plain.hdr, base), 0.01f);
 }
 
 // KHR_materials_unlit: base colour only, whatever lights it (a sun, the sky, a light) and
 // whatever else the material says (emission, metal): the frame and the reference mode both
 // show the base colour exactly (1e-5), where the same material lit does not (more than 5%).
 TEST_F(GltfFeaturesTest, UnlitMaterialIsItsBaseColourInTheFrameAndTheReference) {
-    GltfBuilder b;
-    b.add(kQuad, kFloat, "VEC3", 4);
-    b.add(kQuadIndices, kUshort, "SCALAR", 6);
+    GltfBuilder b = quad_builder();
     auto material = [](const std::string& extensions) {
         return R"({"pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.5, 0.9, 1], "metallicFactor": 1,
                    "roughnessFactor": 0.1}, "emissiveFactor": [1, 1, 1], "extensions": {)" + extensions + "}}";
@@ -235,19 +237,15 @@ TEST_F(GltfFeaturesTest, UnlitMaterialIsItsBaseColourInTheFrameAndTheReference) 
         &session);
     ASSERT_EQ(unlit.hdr.size(), kSize * kSize * 4);
     const glm::vec3 base(0.2f, 0.5f, 0.9f);
-    auto off_base = [&](const std::vector<float>& hdr) {
-        const Pixel q = at(hdr, 32, 32);
-        return std::max({std::abs(q.r - base.x), std::abs(q.g - base.y), std::abs(q.b - base.z)});
-    };
-    EXPECT_LT(off_base(unlit.hdr), 1e-5f);
+    EXPECT_LT(centre_off(unlit.hdr, base), 1e-5f);
     ASSERT_TRUE(session);
     const auto reference = session->render_reference(ReferenceSettings{});
     ASSERT_TRUE(reference) << reference.error().message;
-    EXPECT_LT(off_base(reference->hdr), 1e-5f);
+    EXPECT_LT(centre_off(reference->hdr, base), 1e-5f);
     const RenderedImages shaded =
         render(b.write(dir, "lit", mesh_file(R"("POSITION": 0)", 1, material(""))), lit, false);
     ASSERT_EQ(shaded.hdr.size(), kSize * kSize * 4);
-    EXPECT_GT(off_base(shaded.hdr), 0.05f);
+    EXPECT_GT(centre_off(shaded.hdr, base), 0.05f);
 }
 
 // TEXCOORD_0 points at the texture's red half, TEXCOORD_1 at its green half: the material
@@ -256,9 +254,7 @@ TEST_F(GltfFeaturesTest, TextureOnTheSecondUvSet) {
     const std::string png = dir.file("halves.png");
     const unsigned char texels[] = {255, 0, 0, 255, 0, 255, 0, 255};
     ASSERT_TRUE(write_png(png, 2, 1, texels));
-    GltfBuilder b;
-    b.add(kQuad, kFloat, "VEC3", 4);
-    b.add(kQuadIndices, kUshort, "SCALAR", 6);
+    GltfBuilder b = quad_builder();
     b.add(std::vector<float>(8, 0.25f), kFloat, "VEC2", 4);
     b.add(std::vector<float>{0.75f, 0.5f, 0.75f, 0.5f, 0.75f, 0.5f, 0.75f, 0.5f}, kFloat, "VEC2", 4);
     const std::string members =
@@ -292,9 +288,7 @@ TEST_F(GltfFeaturesTest, TextureTransformPicksTheTexelsTheExtensionSays) {
         const glm::vec2 uv = uv_of(kQuad[3 * i], kQuad[3 * i + 1]);
         uv0.insert(uv0.end(), {uv.x, uv.y});
     }
-    GltfBuilder b;
-    b.add(kQuad, kFloat, "VEC3", 4);
-    b.add(kQuadIndices, kUshort, "SCALAR", 6);
+    GltfBuilder b = quad_builder();
     b.add(uv0, kFloat, "VEC2", 4);
     b.add(std::vector<float>(8, 0.01f), kFloat, "VEC2", 4);
     const double offset[2] = {0.3, 0.1}, rotation = 0.5, scale[2] = {1.5, 0.75};
@@ -364,9 +358,7 @@ TEST_F(GltfFeaturesTest, RotatedNormalMapTurnsItsTangentFrame) {
     ASSERT_TRUE(write_png(png, 1, 1, texel));
     std::vector<float> uv0;
     for (size_t i = 0; i < 4; ++i) uv0.insert(uv0.end(), {(kQuad[3 * i] + 1.0f) / 2.0f, (1.0f - kQuad[3 * i + 1]) / 2.0f});
-    GltfBuilder b;
-    b.add(kQuad, kFloat, "VEC3", 4);
-    b.add(kQuadIndices, kUshort, "SCALAR", 6);
+    GltfBuilder b = quad_builder();
     b.add(uv0, kFloat, "VEC2", 4);
     b.add(std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, kFloat, "VEC3", 4);  // NORMAL
     auto normal_at_centre = [&](const std::string& name, const std::string& extension) {
@@ -464,9 +456,7 @@ TEST_F(GltfFeaturesTest, MirroredNormalMapKeepsItsBitangent) {
     const glm::vec3 tangent_space = glm::normalize(glm::vec3(texel[0], texel[1], texel[2]) / 255.0f * 2.0f - 1.0f);
     const glm::vec3 n = glm::normalize(glm::vec3(0.0f, tangent_space.y, tangent_space.z));  // x: along the tangent
     ASSERT_NEAR(tangent_space.x, 0.0f, 0.01f);
-    GltfBuilder b;
-    b.add(kQuad, kFloat, "VEC3", 4);
-    b.add(kQuadIndices, kUshort, "SCALAR", 6);
+    GltfBuilder b = quad_builder();
     b.add(std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, kFloat, "VEC3", 4);                  // NORMAL
     b.add(std::vector<float>{1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1}, kFloat, "VEC4", 4);     // TANGENT
     b.add(std::vector<float>{0, 1, 1, 1, 1, 0, 0, 0}, kFloat, "VEC2", 4);
