@@ -37,6 +37,10 @@ FinalImageTruth final_image_truth(const FinalImageViews& in, const Vec3& eye, co
         if (image.size() != count * 4)
             throw std::invalid_argument("final_image_accuracy: an image is not " + std::to_string(in.width) + " x " +
                                         std::to_string(in.height) + " RGBA");
+    const bool coated = !in.clearcoat.empty();
+    if (coated && (in.clearcoat.size() != count * 4 || in.clearcoat_normal.size() != count * 4))
+        throw std::invalid_argument("final_image_accuracy: the clear coat's images are not " +
+                                    std::to_string(in.width) + " x " + std::to_string(in.height) + " RGBA");
     // Eligible pixels: covered (the views' alpha and the resolved colour's coverage both
     // 1, so MSAA edges are left out), facing the eye and rough enough.
     std::vector<Pixel> eligible;
@@ -53,6 +57,12 @@ FinalImageTruth final_image_truth(const FinalImageViews& in, const Vec3& eye, co
         m.roughness = roughness;
         m.dielectric_f0 = s.dielectric_f0;
         m.specular_weight = s.specular_weight;
+        if (coated && in.clearcoat[i * 4] > 0) {
+            m.clearcoat = in.clearcoat[i * 4];
+            m.clearcoat_roughness = in.clearcoat[i * 4 + 1];
+            m.clearcoat_normal = unit({in.clearcoat_normal[i * 4], in.clearcoat_normal[i * 4 + 1],
+                                       in.clearcoat_normal[i * 4 + 2]});
+        }
         eligible.push_back({i, n, v, m, group_of(roughness, metallic)});
     }
     // An even stride through the eligible pixels (scan order) down to the budget.

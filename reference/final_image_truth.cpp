@@ -26,9 +26,40 @@ double visibility_height_correlated(double n_l, double n_v, double a2) {
 // Schlick-GGX's one-direction factor x / (x (1 - k) + k).
 double schlick_g1(double x, double k) { return x / (x * (1 - k) + k); }
 
+// The layer's normal: its own, or the surface's.
+const Vec3& coat_normal(const TruthMaterial& m, const Vec3& n) {
+    const Vec3& c = m.clearcoat_normal;
+    return c[0] == 0 && c[1] == 0 && c[2] == 0 ? n : c;
+}
+
+Vec3 layer_brdf_cos(BrdfModel model, const TruthMaterial& m, const Vec3& n, const Vec3& v, const Vec3& l,
+                    bool punctual);
+
 }  // namespace
 
 Vec3 brdf_cos(BrdfModel model, const TruthMaterial& m, const Vec3& n, const Vec3& v, const Vec3& l, bool punctual) {
+    const Vec3 below = layer_brdf_cos(model, m, n, v, l, punctual);
+    if (m.clearcoat <= 0) return below;
+    Vec3 h{v[0] + l[0], v[1] + l[1], v[2] + l[2]};
+    const double h_len = std::sqrt(dot(h, h));
+    if (h_len < 1e-12) return below;
+    const double v_h = std::clamp(dot(v, h) / h_len, 0.0, 1.0), s1 = 1 - v_h;
+    const double coat = m.clearcoat * (0.04 + 0.96 * s1 * s1 * s1 * s1 * s1);
+    // The layer: a dielectric of F0 0.04 with no diffuse lobe; its F is Fc, so its
+    // brdf_cos times the weight is c Fc D V (n_c.l).
+    TruthMaterial layer;
+    layer.albedo = {0, 0, 0};
+    layer.roughness = m.clearcoat_roughness;
+    const Vec3 top = layer_brdf_cos(model, layer, coat_normal(m, n), v, l, punctual);
+    Vec3 f;
+    for (size_t c = 0; c < 3; ++c) f[c] = (1 - coat) * below[c] + m.clearcoat * top[c];
+    return f;
+}
+
+namespace {
+
+Vec3 layer_brdf_cos(BrdfModel model, const TruthMaterial& m, const Vec3& n, const Vec3& v, const Vec3& l,
+                    bool punctual) {
     const double n_l = dot(n, l);
     if (n_l <= 0) return {0, 0, 0};
     // Grazing views: clamped away from 0 so that the thesis' 1 / (4 n.l n.v) stays finite
@@ -67,6 +98,8 @@ Vec3 brdf_cos(BrdfModel model, const TruthMaterial& m, const Vec3& n, const Vec3
     return {f[0] * n_l, f[1] * n_l, f[2] * n_l};
 }
 
+}  // namespace
+
 TexelLights texel_lights(const Equirect& env) {
     TexelLights t;
     t.dir.reserve(size_t(env.w) * env.h);
@@ -86,7 +119,8 @@ TexelLights texel_lights(const Equirect& env) {
 Vec3 environment_truth(const TexelLights& t, BrdfModel model, const TruthMaterial& m, const Vec3& n, const Vec3& v) {
     Vec3 sum{0, 0, 0};
     for (size_t i = 0; i < t.dir.size(); ++i) {
-        if (dot(n, t.dir[i]) <= 0) continue;  // below the horizon: brdf_cos is 0
+        // Below the horizon (of the surface and of its clear coat): brdf_cos is 0.
+        if (dot(n, t.dir[i]) <= 0 && (m.clearcoat <= 0 || dot(coat_normal(m, n), t.dir[i]) <= 0)) continue;
         const Vec3 f = brdf_cos(model, m, n, v, t.dir[i]);
         for (size_t c = 0; c < 3; ++c) sum[c] += f[c] * t.power[i][c];
     }

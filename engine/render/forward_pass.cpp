@@ -151,6 +151,7 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     define_if(mirrored && m.double_sided, "MIRRORED");
     define_if(m.unlit || primitive.topology != Topology::triangles, "UNLIT");
     define_if(primitive.topology == Topology::points, "POINTS");
+    define_if(m.clearcoat > 0.0f, "CLEARCOAT");
     define_if(ibl, "USE_IBL");
     define_if(settings.brdf == BrdfModel::thesis, "BRDF_THESIS");
     define_if(ibl && settings.multiscatter, "MULTISCATTER");

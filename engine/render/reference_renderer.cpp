@@ -73,7 +73,7 @@ Status ReferenceRenderer::set_environment(std::span<const float> rgba, uint32_t 
 Result<ReferenceStats> ReferenceRenderer::accumulate(const ReferenceSurface& surface, const FrameSettings& frame,
                                                      const ReferenceSettings& settings, const Progress& progress) try {
     if (!surface.normal || !surface.position || !surface.basecolor || !surface.metallic || !surface.roughness ||
-        !surface.f0 || !surface.emissive)
+        !surface.f0 || !surface.emissive || !surface.clearcoat || !surface.clearcoat_normal)
         return Error{"reference: every surface view is needed"};
     if (settings.batch_samples == 0 || settings.max_samples == 0)
         return Error{"reference: the sample counts must be at least 1"};
@@ -111,14 +111,17 @@ Result<ReferenceStats> ReferenceRenderer::accumulate(const ReferenceSurface& sur
     }));
 
     ReferenceStats stats;
-    const Image* views[] = {surface.normal, surface.position, surface.basecolor, surface.metallic,
-                            surface.roughness, surface.f0, surface.emissive};
-    const char* view_names[] = {"normal", "position", "basecolor", "metallic", "roughness", "f0", "emissive"};
+    // Bindings 0-6, then 12 and 13 (render/reference.comp).
+    const Image* views[] = {surface.normal,   surface.position, surface.basecolor, surface.metallic, surface.roughness,
+                            surface.f0,       surface.emissive, surface.clearcoat, surface.clearcoat_normal};
+    const char* view_names[] = {"normal", "position", "basecolor", "metallic", "roughness",
+                                "f0",     "emissive", "clearcoat", "clearcoat normal"};
+    constexpr int kViews = 9, kFirstViewsInOrder = 7;
     while (stats.samples < settings.max_samples) {
         const uint32_t count = std::min(settings.batch_samples, settings.max_samples - stats.samples);
         RenderGraph graph;
         std::vector<ImageHandle> inputs;
-        for (int i = 0; i < 7; ++i)
+        for (int i = 0; i < kViews; ++i)
             inputs.push_back(graph.import_image(view_names[i], {views[i]->handle(), views[i]->desc(), sampled, sampled}));
         ImageHandle acc = graph.import_image("accumulation", {accumulation_->handle(), desc, storage, storage});
         ImageHandle mom = graph.import_image("moments", {moments_->handle(), desc, storage, storage});
@@ -132,12 +135,15 @@ Result<ReferenceStats> ReferenceRenderer::accumulate(const ReferenceSurface& sur
         }, [&, p = *pipeline, params, inputs, acc, mom](PassContext& pc) {
             p->bind(pc.cmd());
             std::vector<DescriptorWrite> writes;
-            for (ImageHandle h : inputs) writes.push_back(DescriptorWrite::sampled_image(pc.view(h), nearest_.handle()));
+            for (int i = 0; i < kFirstViewsInOrder; ++i)
+                writes.push_back(DescriptorWrite::sampled_image(pc.view(inputs[i]), nearest_.handle()));
             writes.push_back(DescriptorWrite::storage_buffer(radiance_->handle()));
             writes.push_back(DescriptorWrite::storage_buffer(distribution_->handle()));
             writes.push_back(DescriptorWrite::storage_buffer(lights_->handle()));
             writes.push_back(DescriptorWrite::storage_image(pc.view(acc)));
             writes.push_back(DescriptorWrite::storage_image(pc.view(mom)));
+            for (int i = kFirstViewsInOrder; i < kViews; ++i)
+                writes.push_back(DescriptorWrite::sampled_image(pc.view(inputs[i]), nearest_.handle()));
             p->push_descriptors(pc.cmd(), writes);
             p->push_constants(pc.cmd(), params);
             const auto local = p->workgroup_size();

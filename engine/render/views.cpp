@@ -6,7 +6,8 @@ namespace facet {
 namespace {
 constexpr const char* names[] = {"final", "normal", "position", "basecolor", "metallic",
                                  "roughness", "occlusion", "emissive", "D", "F", "G",
-                                 "diffuse", "specular", "irradiance", "prefiltered", "f0"};
+                                 "diffuse", "specular", "irradiance", "prefiltered", "f0",
+                                 "clearcoat", "clearcoat_normal"};
 constexpr int count = sizeof(names) / sizeof(names[0]);
 }  // namespace
 

@@ -73,11 +73,28 @@ void read_texture_transform(const tinygltf::ExtensionMap& extensions, const std:
 void read_unlit(const tinygltf::Material& m, Material& out) {
     if (m.extensions.find("KHR_materials_unlit") == m.extensions.end()) return;
     out.unlit = true;
+    out.clearcoat = 0.0f;
     out.emissive = glm::vec3(0.0f);
     out.emissive_texture = {};
     out.normal_texture = {};
     out.occlusion_texture = {};
     out.metallic_roughness_texture = {};
+}
+
+void read_clearcoat(const tinygltf::Material& m, const std::string& where, Material& out,
+                    std::vector<std::string>& warnings) {
+    const tinygltf::Value* coat = extension(m, "KHR_materials_clearcoat", where);
+    if (!coat) return;
+    const std::string at = where + ": KHR_materials_clearcoat";
+    const double factor = number(*coat, "clearcoatFactor", 0.0, at);
+    if (factor < 0.0 || factor > 1.0) fail(at + ".clearcoatFactor " + number_text(factor) + " is outside [0, 1]");
+    const double roughness = number(*coat, "clearcoatRoughnessFactor", 0.0, at);
+    if (roughness < 0.0 || roughness > 1.0)
+        fail(at + ".clearcoatRoughnessFactor " + number_text(roughness) + " is outside [0, 1]");
+    for (const char* texture : {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"})
+        if (coat->Has(texture)) warnings.push_back(at + ": " + texture + " is not drawn (the factors alone are)");
+    out.clearcoat = float(factor);
+    out.clearcoat_roughness = float(roughness);
 }
 
 void read_dielectric_extensions(const tinygltf::Material& m, const std::string& where, Material& out,

@@ -70,6 +70,7 @@ Material convert_material(const tinygltf::Model& model, size_t index, std::vecto
         if (value.IsNumber()) out.emissive *= float(value.GetNumberAsDouble());
     }
     read_dielectric_extensions(m, where, out, warnings);
+    read_clearcoat(m, where, out, warnings);
     out.normal_scale = float(m.normalTexture.scale);
     out.occlusion_strength = float(m.occlusionTexture.strength);
     if (m.alphaMode == "OPAQUE") {

@@ -37,6 +37,11 @@ struct FacetSurface {
     float dielectric_f0;    // the dielectric part's F0 (0.04 for ior 1.5)
     float specular_factor;  // KHR_materials_specular's factor for the dielectric part (1: none)
     float occlusion;        // ambient occlusion, 0..1: scales environment and disk lights only
+    // KHR_materials_clearcoat (facet_surface_clearcoat): a clear layer of ior 1.5 over the
+    // surface, weight 0 (none) .. 1, with its own roughness and normal.
+    float clearcoat;
+    float clearcoat_roughness;
+    vec3 clearcoat_n;
 };
 
 // glTF's metallic-roughness material under the model `brdf`.
@@ -53,7 +58,32 @@ FacetSurface facet_surface(uint brdf, vec3 n, vec3 albedo, float metallic, float
     s.dielectric_f0 = dielectric_f0;
     s.specular_factor = specular_factor;
     s.occlusion = occlusion;
+    s.clearcoat = 0.0;
+    s.clearcoat_roughness = 0.0;
+    s.clearcoat_n = n;
     return s;
+}
+
+// Puts KHR_materials_clearcoat's layer over the surface: weight 0..1, perceptual roughness,
+// unit normal (the surface's where the layer has no normal map). The extension's BRDF:
+// f = (1 - weight Fc(v.h)) f_surface + weight Fc(v.h) D V of the layer, Fc Schlick's with
+// F0 0.04; the layer's D V is the surface's model's specular lobe (design.md).
+void facet_surface_clearcoat(inout FacetSurface s, float weight, float roughness, vec3 n) {
+    s.clearcoat = weight;
+    s.clearcoat_roughness = roughness;
+    s.clearcoat_n = n;
+}
+
+// The clear layer as a surface of its own: a dielectric of F0 0.04 with no diffuse lobe.
+FacetSurface facet_clearcoat_layer(FacetSurface s) {
+    FacetSurface c = facet_surface(s.brdf, s.clearcoat_n, vec3(0.0), 0.0, s.clearcoat_roughness, 0.04, 1.0, s.occlusion);
+    return c;
+}
+
+// The layer's weight x Fresnel at v.h: what it reflects, and what the surface below loses.
+float facet_clearcoat_fresnel(FacetSurface s, float VdotH) {
+    float x = clamp(1.0 - VdotH, 0.0, 1.0), x2 = x * x;
+    return s.clearcoat * (0.04 + 0.96 * x2 * x2 * x);
 }
 
 // The Fresnel term of the specular lobe and the diffuse lobe's weight at v.h.
@@ -92,17 +122,34 @@ float facet_geometry(FacetSurface s, float NdotV, float NdotL, bool punctual) {
 // diffuse = kd albedo / pi * incident * n.l and specular = F D G / (4 n.l n.v) * incident
 // * n.l. Zero when l is below the surface. NdotV = clamp(n.v, 0, 1). `punctual` selects
 // the thesis' k for punctual lights (the glTF model has one visibility term).
+// A clear coat (facet_surface_clearcoat) dims both by 1 - weight Fc(v.h) and adds its own
+// lobe to the specular, with its normal's n.l.
 void facet_reflect_light(FacetSurface s, vec3 v, float NdotV, vec3 l, vec3 incident, bool punctual,
                          out vec3 diffuse, out vec3 specular) {
     diffuse = vec3(0.0);
     specular = vec3(0.0);
     float NdotL = dot(s.n, l);
-    if (NdotL <= 0.0) return;
+    float coat_NdotL = s.clearcoat > 0.0 ? dot(s.clearcoat_n, l) : 0.0;
+    if (NdotL <= 0.0 && coat_NdotL <= 0.0) return;
     vec3 h = normalize(v + l);
-    vec3 F, kd;
-    facet_fresnel(s, clamp(dot(h, v), 0.0, 1.0), F, kd);
-    diffuse = kd * s.albedo / PI * incident * NdotL;
-    specular = F * facet_specular_dg(s, NdotV, NdotL, clamp(dot(s.n, h), 0.0, 1.0), punctual) * incident * NdotL;
+    float VdotH = clamp(dot(h, v), 0.0, 1.0);
+    if (NdotL > 0.0) {
+        vec3 F, kd;
+        facet_fresnel(s, VdotH, F, kd);
+        diffuse = kd * s.albedo / PI * incident * NdotL;
+        specular = F * facet_specular_dg(s, NdotV, NdotL, clamp(dot(s.n, h), 0.0, 1.0), punctual) * incident * NdotL;
+    }
+    if (s.clearcoat > 0.0) {
+        float coat = facet_clearcoat_fresnel(s, VdotH);
+        diffuse *= 1.0 - coat;
+        specular *= 1.0 - coat;
+        if (coat_NdotL > 0.0) {
+            FacetSurface c = facet_clearcoat_layer(s);
+            float coat_NdotV = clamp(dot(c.n, v), 0.0, 1.0);
+            specular += coat * facet_specular_dg(c, coat_NdotV, coat_NdotL, clamp(dot(c.n, h), 0.0, 1.0), punctual) *
+                        incident * coat_NdotL;
+        }
+    }
 }
 
 // Unit vectors t and b that make (t, b, n) a right-handed orthonormal frame around the
@@ -321,6 +368,23 @@ void facet_disk_light(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, 
     specular = F * (visibility * NdotL * 4.0 * VdotH * VdotH * NdotH * NdotH * q * share * scale) * disk.radiance;
 }
 
+// KHR_materials_clearcoat's layer under a disk: `below`, the factor that dims the surface's
+// own terms of the disk (facet_disk_light's: 1 - weight Fc(v.h) at the cap's centre), and
+// the layer's specular (facet_disk_light's closed form, the layer as the surface). 1 and 0
+// without a layer.
+void facet_disk_clearcoat(FacetSurface s, vec3 v, FacetDiskLight disk, out float below, out vec3 specular) {
+    below = 1.0;
+    specular = vec3(0.0);
+    if (s.clearcoat <= 0.0) return;
+    vec3 h = v + disk.direction;
+    h *= inversesqrt(max(dot(h, h), 1e-12));
+    below = 1.0 - facet_clearcoat_fresnel(s, clamp(dot(v, h), 0.0, 1.0));
+    FacetSurface c = facet_clearcoat_layer(s);
+    vec3 none;
+    facet_disk_light(c, v, clamp(dot(c.n, v), 0.0, 1.0), disk, none, specular);
+    specular *= s.clearcoat;  // facet_disk_light's F is the layer's Fc
+}
+
 // The lookups of the prefiltered cube that stand for the specular lobe. One along R at the
 // surface's roughness (the split sum as Karis wrote it), or, `fitted`, three fitted to the
 // true lobe D V (n.l) (specular_lobes.glsl, scripts/fit_specular_lobes.py): at n.v < 1 the
@@ -436,6 +500,25 @@ FacetEnvironmentLight facet_environment_light(FacetSurface s, vec3 v, float Ndot
     env.diffuse = kd * s.albedo * env.irradiance * s.occlusion;
     env.specular += env.prefiltered * E * s.occlusion;
     return env;
+}
+
+// KHR_materials_clearcoat's layer under the environment, applied to facet_environment_light's
+// result `env` for the same surface and its LUT value `lut`: the surface's terms dimmed by
+// 1 - weight x the mean of Fc over each lobe (the diffuse lobe's from the LUT's fourth
+// channel, the specular lobe's (0.04 A + B) / (A + B) from its split sum), and the layer's
+// own split sum added: one lookup along its reflection at its roughness, times 0.04 A + B of
+// the LUT (lut_map) at its n.v and roughness. Nothing without a layer.
+void facet_environment_clearcoat(FacetSurface s, vec3 v, vec4 lut, sampler2D lut_map, samplerCube specular_map,
+                                 float specular_levels, float intensity, inout FacetEnvironmentLight env) {
+    if (s.clearcoat <= 0.0) return;
+    env.diffuse *= 1.0 - s.clearcoat * (0.04 + 0.96 * lut.w);
+    env.specular *= 1.0 - s.clearcoat * (0.04 * lut.x + lut.y) / max(lut.x + lut.y, 1e-6);
+    float coat_NdotV = clamp(dot(s.clearcoat_n, v), 0.0, 1.0);
+    vec4 coat_lut = facet_brdf_lut(lut_map, coat_NdotV, s.clearcoat_roughness);
+    vec3 R = reflect(-v, s.clearcoat_n);
+    float lod = facet_specular_lod(s.clearcoat_roughness, specular_levels);
+    vec3 prefiltered = textureLod(specular_map, R, lod).rgb * intensity;
+    env.specular += s.clearcoat * (0.04 * coat_lut.x + coat_lut.y) * prefiltered * s.occlusion;
 }
 
 // The same with the lookups made here (facet_specular_lookups): one along R, or the three

@@ -7,7 +7,7 @@
 // ALPHA_OPAQUE (alpha written as 1), ALPHA_MASK, ALPHA_BLEND, DOUBLE_SIDED, MIRRORED (the
 // instance's world matrix mirrors: its front faces wind clockwise), UNLIT (points, lines and
 // KHR_materials_unlit: base colour x vertex colour + emissive, which the loader clears for
-// unlit materials), <SLOT>_UV (a texture's coordinates: its uv set and
+// unlit materials), CLEARCOAT (KHR_materials_clearcoat's layer), <SLOT>_UV (a texture's coordinates: its uv set and
 // KHR_texture_transform) and NORMAL_TANGENT_FRAME, USE_IBL, BRDF_THESIS (the thesis' model
 // instead of glTF's), MULTISCATTER (energy compensation), DOMINANT_DIRECTION (bent specular
 // lookup), VIEW (what is written: render/views.glsl).
@@ -148,6 +148,7 @@ Surface surface_at(MaterialData m) {
     if (!gl_FrontFacing) n = -n;
 #endif
 #endif
+    vec3 geometric_n = n;  // a clear coat's normal (the extension's default: no normal map)
 #ifdef HAS_NORMAL_MAP
     // Tangent frame of the glTF specification: bitangent = cross(n, t) * w.
     vec3 t = in_tangent.xyz - n * dot(n, in_tangent.xyz);
@@ -166,6 +167,9 @@ Surface surface_at(MaterialData m) {
 #endif
     s.shading = facet_surface(brdf_model, n, base.rgb, clamp(metallic, 0.0, 1.0), clamp(roughness, 0.0, 1.0), m.emissive_f0.a,
                               m.extra.y, occlusion);
+#ifdef CLEARCOAT
+    facet_surface_clearcoat(s.shading, clamp(m.clearcoat.x, 0.0, 1.0), clamp(m.clearcoat.y, 0.0, 1.0), geometric_n);
+#endif
     return s;
 }
 
@@ -229,19 +233,39 @@ void main() {
     FacetSpecularLookups lookups = facet_specular_lookups(s, v, NdotV, specular_levels, specular_lobes, dominant_direction);
     float disk_specular_weight = facet_disk_specular_weight(lookups, frame.ibl.z);
     // The DISK_LIGHTS disks, constants of the pipeline.
-    vec3 disk_diffuse_sum = vec3(0.0), disk_specular_sum = vec3(0.0);
+    vec3 disk_diffuse_sum = vec3(0.0), disk_specular_sum = vec3(0.0), disk_coat_sum = vec3(0.0);
+#ifdef CLEARCOAT
+#define FACET_DISK_CLEARCOAT(disk)                                                                                 \
+    float below;                                                                                                   \
+    vec3 coat_specular;                                                                                            \
+    facet_disk_clearcoat(s, v, disk, below, coat_specular);                                                        \
+    disk_diffuse *= below;                                                                                         \
+    disk_specular *= below;                                                                                        \
+    disk_coat_sum += coat_specular;
+#else
+#define FACET_DISK_CLEARCOAT(disk)
+#endif
 #define FACET_DISK(i)                                                                                              \
     if (i < DISK_LIGHTS) {                                                                                         \
         vec3 disk_diffuse, disk_specular;                                                                          \
-        facet_disk_light(s, v, NdotV, unpack_disk_light(FACET_DISK_LIGHT_##i), disk_diffuse, disk_specular);      \
+        FacetDiskLight disk = unpack_disk_light(FACET_DISK_LIGHT_##i);                                             \
+        facet_disk_light(s, v, NdotV, disk, disk_diffuse, disk_specular);                                          \
+        FACET_DISK_CLEARCOAT(disk)                                                                                 \
         disk_diffuse_sum += disk_diffuse;                                                                          \
         disk_specular_sum += disk_specular;                                                                        \
     }
     FACET_DISK(0) FACET_DISK(1) FACET_DISK(2) FACET_DISK(3) FACET_DISK(4) FACET_DISK(5) FACET_DISK(6) FACET_DISK(7)
     FACET_DISK(8) FACET_DISK(9) FACET_DISK(10) FACET_DISK(11) FACET_DISK(12) FACET_DISK(13) FACET_DISK(14) FACET_DISK(15)
 #undef FACET_DISK
+#undef FACET_DISK_CLEARCOAT
     diffuse += disk_diffuse_sum * frame.ibl.x * s.occlusion;
     specular += disk_specular_sum * disk_specular_weight * frame.ibl.x * s.occlusion;
+#ifdef CLEARCOAT
+    // The layer's own share of the disks: by its roughness's lookup (the levels below
+    // frame.ibl.z still hold the lights).
+    specular += disk_coat_sum * facet_disk_specular_weight(s.clearcoat_roughness, specular_levels, frame.ibl.z) *
+                frame.ibl.x * s.occlusion;
+#endif
 #ifdef MULTISCATTER
     const bool multiscatter = true;
 #else
@@ -249,6 +273,7 @@ void main() {
 #endif
     FacetEnvironmentLight env = facet_environment_light(s, v, NdotV, lut, irradiance_map, specular_map, frame.ibl.x,
                                                         multiscatter, lookups);
+    facet_environment_clearcoat(s, v, lut, brdf_lut, specular_map, specular_levels, frame.ibl.x, env);
     diffuse += env.diffuse;
     specular += env.specular;
     irradiance = env.irradiance;
@@ -285,6 +310,10 @@ void main() {
     out_color = vec4(prefiltered, 1.0);
 #elif VIEW == VIEW_SPECULAR_F0
     out_color = vec4(vec3(s.dielectric_f0), s.specular_factor);
+#elif VIEW == VIEW_CLEARCOAT
+    out_color = vec4(s.clearcoat, s.clearcoat_roughness, 0.0, 1.0);
+#elif VIEW == VIEW_CLEARCOAT_NORMAL
+    out_color = vec4(s.clearcoat_n, 1.0);
 #else
     vec3 h = normalize(v + view_l);
     float NdotL = clamp(dot(n, view_l), 0.0, 1.0);

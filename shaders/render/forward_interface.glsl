@@ -28,6 +28,7 @@ struct MaterialData {
     vec4 emissive_f0;  // rgb emissive, a dielectric F0
     vec4 factors;      // metallic, roughness, normal scale, occlusion strength
     vec4 extra;        // alpha cutoff, specular factor, occlusion factor
+    vec4 clearcoat;    // KHR_materials_clearcoat: factor, roughness
 };
 layout(binding = 3, std430) readonly buffer Materials { MaterialData materials[]; };
 

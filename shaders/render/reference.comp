@@ -28,6 +28,8 @@ layout(binding = 8, std430) readonly buffer Distribution { float distribution[];
 layout(binding = 9, std430) readonly buffer Lights { PackedLight lights[]; };  // punctual only
 layout(binding = 10, rgba32f) uniform image2D accumulation;  // rgb sum, a = samples
 layout(binding = 11, rgba32f) uniform image2D moments;       // x: sum of Y, y: sum of Y^2 (per batch mean)
+layout(binding = 12) uniform sampler2D clearcoat_view;         // KHR_materials_clearcoat: weight, roughness
+layout(binding = 13) uniform sampler2D clearcoat_normal_view;  // the clear coat's normal
 
 layout(push_constant) uniform Params {
     vec4 camera_position;  // xyz
@@ -76,7 +78,8 @@ struct Surface {
     FacetSurface shading;
     vec3 v;
     float NdotV;
-    float p_specular;  // probability of sampling the specular lobe
+    float p_specular;  // probability of sampling the specular lobe (of the surface below a clear coat)
+    float p_coat;      // probability of sampling the clear coat's lobe
 };
 
 // BRDF x cos x radiance arriving along l (facet/shading.glsl's composition).
@@ -90,11 +93,19 @@ vec3 reflected(Surface s, vec3 l, vec3 radiance, bool punctual) {
 float brdf_pdf(Surface s, vec3 l) {
     vec3 n = s.shading.n;
     float NdotL = dot(n, l);
-    if (NdotL <= 0.0) return 0.0;
+    float coat_NdotL = s.p_coat > 0.0 ? dot(s.shading.clearcoat_n, l) : 0.0;
+    if (NdotL <= 0.0 && coat_NdotL <= 0.0) return 0.0;
     vec3 h = normalize(s.v + l);
-    float NdotH = clamp(dot(n, h), 0.0, 1.0);
-    float specular = ggx_sample_pdf(NdotH, dot(h, s.v), s.shading.roughness);
-    return s.p_specular * specular + (1.0 - s.p_specular) * NdotL / PI;
+    float pdf = 0.0;
+    if (NdotL > 0.0) {
+        float specular = ggx_sample_pdf(clamp(dot(n, h), 0.0, 1.0), dot(h, s.v), s.shading.roughness);
+        pdf = s.p_specular * specular + (1.0 - s.p_specular) * NdotL / PI;
+    }
+    pdf *= 1.0 - s.p_coat;
+    if (coat_NdotL > 0.0)
+        pdf += s.p_coat * ggx_sample_pdf(clamp(dot(s.shading.clearcoat_n, h), 0.0, 1.0), dot(h, s.v),
+                                         s.shading.clearcoat_roughness);
+    return pdf;
 }
 
 // Randomised quasi-Monte Carlo: sample i of a batch takes the i-th point of a 7-D
@@ -109,6 +120,15 @@ float kronecker(uint i, uint dim, float shift) {
 }
 
 vec3 sample_brdf(Surface s, vec3 u) {
+    if (u.z < s.p_coat) {
+        // The clear coat's lobe, around its own normal.
+        vec3 ct, cb;
+        facet_tangent_frame(s.shading.clearcoat_n, ct, cb);
+        vec3 h = mat3(ct, cb, s.shading.clearcoat_n) *
+                 importance_sample_ggx_tangent(u.xy, s.shading.clearcoat_roughness);
+        return reflect(-s.v, h);
+    }
+    u.z = (u.z - s.p_coat) / (1.0 - s.p_coat);
     vec3 n = s.shading.n;
     vec3 t, b;
     facet_tangent_frame(n, t, b);
@@ -165,6 +185,12 @@ void main() {
     s.v = normalize(params.camera_position.xyz - position.xyz);
     s.NdotV = clamp(dot(s.shading.n, s.v), 0.0, 1.0);
     s.p_specular = s.shading.specular_weight <= 0.0 ? 0.0 : mix(0.5, 1.0, s.shading.metallic);
+    vec4 coat = texelFetch(clearcoat_view, pixel, 0);
+    s.p_coat = 0.0;
+    if (coat.r > 0.0) {
+        facet_surface_clearcoat(s.shading, coat.r, coat.g, normalize(texelFetch(clearcoat_normal_view, pixel, 0).xyz));
+        s.p_coat = 0.5 * coat.r;
+    }
     vec3 p = position.xyz;
     // An unlit surface (KHR_materials_unlit, points, lines: the metallic view's alpha 0) is
     // its base colour and emission, exactly, with nothing to sample.
@@ -186,7 +212,7 @@ void main() {
         float pe;
         l = sample_environment(vec4(kronecker(i, 3u, shift[3]), kronecker(i, 4u, shift[4]), kronecker(i, 5u, shift[5]),
                                     kronecker(i, 6u, shift[6])), pe);
-        if (pe > 0.0 && dot(s.shading.n, l) > 0.0) {
+        if (pe > 0.0 && (dot(s.shading.n, l) > 0.0 || (s.p_coat > 0.0 && dot(s.shading.clearcoat_n, l) > 0.0))) {
             float pb2 = brdf_pdf(s, l);
             batch_sum += reflected(s, l, env_radiance(l), false) / (pb2 + pe);
         }

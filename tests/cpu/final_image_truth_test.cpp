@@ -46,6 +46,40 @@ TEST(FinalImageTruth, GltfWhiteMetalReflectsTheHeightCorrelatedAlbedo) {
         }
 }
 
+// KHR_materials_clearcoat's layer alone (over a surface that reflects nothing) under
+// uniform light reflects its own directional albedo, 0.04 A + B of the LUT's quadrature at
+// the layer's n.v and roughness; with the layer's normal tilted away from the surface's,
+// the sum covers what lies above the layer's horizon and gives the same.
+TEST(FinalImageTruth, ClearcoatAloneReflectsItsLayersAlbedoAboutItsOwnNormal) {
+    TruthMaterial coated;
+    coated.albedo = {0, 0, 0};
+    coated.specular_weight = 0;  // the surface below: black, no specular lobe
+    coated.clearcoat = 1;
+    for (double r : {0.3, 0.6})
+        for (double c : {0.5, 0.9}) {
+            coated.clearcoat_roughness = r;
+            const Ab ab = brdf_lut_reference(c, r, /*height_correlated=*/true);
+            const Vec3 n{0, 1, 0};
+            coated.clearcoat_normal = {0, 0, 0};  // the surface's
+            const Vec3 got = environment_truth(uniform_light(), BrdfModel::gltf, coated, n, view_at(c));
+            EXPECT_NEAR(got[0], 0.04 * ab.a + ab.b, furnace_tolerance) << "r " << r << " n.v " << c;
+            // The layer's normal 40 degrees from the surface's, about the z axis, and the view
+            // at n_c.v = c: the surface's normal plays no part.
+            const double t = 40 * pi / 180;
+            coated.clearcoat_normal = {-std::sin(t), std::cos(t), 0};
+            const Vec3 v = unit(std::sqrt(1 - c * c) * std::cos(t) - c * std::sin(t),
+                                std::sqrt(1 - c * c) * std::sin(t) + c * std::cos(t), 0);
+            const Vec3 tilted = environment_truth(uniform_light(), BrdfModel::gltf, coated, n, v);
+            EXPECT_NEAR(tilted[0], 0.04 * ab.a + ab.b, furnace_tolerance) << "tilted, r " << r << " n.v " << c;
+            // Half the weight, half the light.
+            coated.clearcoat = 0.5;
+            coated.clearcoat_normal = {0, 0, 0};
+            const Vec3 half = environment_truth(uniform_light(), BrdfModel::gltf, coated, n, view_at(c));
+            EXPECT_NEAR(half[0], 0.5 * got[0], 1e-12);
+            coated.clearcoat = 1;
+        }
+}
+
 TEST(FinalImageTruth, ThesisWhiteMetalReflectsTheSchlickGgxAlbedo) {
     TruthMaterial white;
     white.metallic = 1;

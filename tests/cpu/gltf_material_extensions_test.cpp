@@ -2,7 +2,8 @@
 // KHR_materials_specular read into the dielectric lobe's F0 and strength (scene/gltf_material_extensions.h), against the extensions' formulas computed
 // here: F0 = ((ior - 1) / (ior + 1))^2, then min(F0 x specularColor, 1), and the
 // specular weight = specularFactor; what is not drawn is a warning, invalid values an
-// error naming the material.
+// error naming the material. KHR_materials_clearcoat's factors read as they are (the
+// layer's shading is tested against the truth in tests/gpu/brdf_models_truth_test.cpp).
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -25,7 +26,7 @@ struct TempDir : test::GltfTempDir {
 // One triangle whose material 0 has `extensions` (a JSON object's members).
 Result<Scene> load_material(const TempDir& dir, const std::string& extensions) {
     const std::string text = R"({"asset": {"version": "2.0"},
-  "extensionsUsed": ["KHR_materials_ior", "KHR_materials_specular", "KHR_materials_unlit"],
+  "extensionsUsed": ["KHR_materials_ior", "KHR_materials_specular", "KHR_materials_unlit", "KHR_materials_clearcoat"],
   "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
   "bufferViews": [{"buffer": 0, "byteLength": 36}],
   "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}],
@@ -106,6 +107,32 @@ TEST(GltfMaterialExtensions, UnlitKeepsTheBaseColourAloneAndIsNoWarning) {
     EXPECT_TRUE(scene->warnings.empty());
 }
 
+TEST(GltfMaterialExtensions, ClearcoatReadsItsFactorsAndWarnsOfItsTextures) {
+    TempDir dir;
+    const Result<Scene> plain = load_material(dir, "");
+    ASSERT_TRUE(plain.ok()) << plain.error().message;
+    EXPECT_EQ(plain->materials[0].clearcoat, 0.0f);
+    const Result<Scene> absent = load_material(dir, R"("KHR_materials_clearcoat": {})");
+    ASSERT_TRUE(absent.ok()) << absent.error().message;
+    EXPECT_EQ(absent->materials[0].clearcoat, 0.0f);  // the extension's defaults: no layer
+    EXPECT_EQ(absent->materials[0].clearcoat_roughness, 0.0f);
+    const Result<Scene> coat = load_material(
+        dir, R"("KHR_materials_clearcoat": {"clearcoatFactor": 0.75, "clearcoatRoughnessFactor": 0.3,
+                 "clearcoatTexture": {"index": 0}, "clearcoatNormalTexture": {"index": 0}})");
+    ASSERT_TRUE(coat.ok()) << coat.error().message;
+    EXPECT_EQ(coat->materials[0].clearcoat, 0.75f);
+    EXPECT_EQ(coat->materials[0].clearcoat_roughness, 0.3f);
+    ASSERT_EQ(coat->warnings.size(), 2u);
+    EXPECT_EQ(coat->warnings[0], "material 'glass': KHR_materials_clearcoat: clearcoatTexture is not drawn (the "
+                                 "factors alone are)");
+    EXPECT_NE(coat->warnings[1].find("clearcoatNormalTexture is not drawn"), std::string::npos);
+    // Unlit wins: no layer over a surface that is not lit.
+    const Result<Scene> unlit =
+        load_material(dir, R"("KHR_materials_clearcoat": {"clearcoatFactor": 1}, "KHR_materials_unlit": {})");
+    ASSERT_TRUE(unlit.ok()) << unlit.error().message;
+    EXPECT_EQ(unlit->materials[0].clearcoat, 0.0f);
+}
+
 TEST(GltfMaterialExtensions, InvalidValuesAreErrorsNamingTheMaterial) {
     TempDir dir;
     const std::string file = (dir.path / "model.gltf").string();
@@ -121,6 +148,10 @@ TEST(GltfMaterialExtensions, InvalidValuesAreErrorsNamingTheMaterial) {
          "material 'glass': KHR_materials_specular.specularColorFactor must have 3 numbers"},
         {R"("KHR_materials_specular": {"specularColorFactor": [1, -1, 1]})",
          "material 'glass': KHR_materials_specular.specularColorFactor must have 3 finite numbers >= 0"},
+        {R"("KHR_materials_clearcoat": {"clearcoatFactor": 2})",
+         "material 'glass': KHR_materials_clearcoat.clearcoatFactor 2 is outside [0, 1]"},
+        {R"("KHR_materials_clearcoat": {"clearcoatRoughnessFactor": -0.5})",
+         "material 'glass': KHR_materials_clearcoat.clearcoatRoughnessFactor -0.5 is outside [0, 1]"},
     };
     for (const auto& [extensions, message] : cases) {
         const Result<Scene> scene = load_material(dir, extensions);

@@ -13,6 +13,7 @@
 #include <facet/io/image_io.h>
 #include <facet/reference/final_image_accuracy.h>
 #include <facet/render/render_job.h>
+#include <facet/scene/builtin_scenes.h>
 #include "support/gpu_test.h"
 
 namespace facet {
@@ -156,6 +157,123 @@ TEST(BrdfModelsTruth, PunctualLightsAreEachModelsBrdf) {
                     checked, worst);
         EXPECT_GT(checked, 1000);
         EXPECT_LT(worst, 2e-3) << brdf_model_name(model);
+    }
+    EXPECT_EQ(context.validation_message_count(), messages);
+}
+
+// KHR_materials_clearcoat through the whole pipeline: builtin:spheres with a clear coat of
+// weight 1 and roughness 0.25 (its lobe a few texels wide, so that the truth's sum over
+// texels resolves it) on every sphere; the coat's views, a directional light pixel by pixel
+// and the sun sky per group, the forward pass (default shading) and the reference mode,
+// each against the truth with the layer (final_image_truth.h).
+Result<std::unique_ptr<RenderSession>> coated_spheres(Context& context, const RenderJob& job) {
+    auto scene = builtin_scene("builtin:spheres");
+    if (!scene) return scene.error();
+    for (Material& m : scene->materials) {
+        m.clearcoat = 1.0f;
+        m.clearcoat_roughness = 0.25f;
+    }
+    return RenderSession::create(context, job, std::move(*scene));
+}
+
+TEST(BrdfModelsTruth, ClearcoatLayerMatchesTheTruthUnderALightAndTheEnvironment) {
+    Context& context = test::gpu();
+    const uint32_t messages = context.validation_message_count();
+    const std::vector<View> views = {View::normal,   View::position,  View::basecolor,       View::metallic,
+                                     View::roughness, View::clearcoat, View::clearcoat_normal};
+    auto coat_views = [](const RenderedImages& images, const std::vector<float>& hdr) {
+        test::FinalImageViews v = views_of(images, hdr);
+        v.clearcoat = images.views.at(5).second;
+        v.clearcoat_normal = images.views.at(6).second;
+        return v;
+    };
+    // A directional light, no environment: each pixel is the coated BRDF x cos x E.
+    for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis}) {
+        RenderJob job = spheres_job(model, "none");
+        job.frame.views = views;
+        Light light;
+        light.type = LightType::directional;
+        light.direction = glm::normalize(glm::vec3(-0.4f, -0.5f, -1.0f));
+        light.intensity = 3.0f;
+        job.extra_lights = {light};
+        auto session = coated_spheres(context, job);
+        ASSERT_TRUE(session) << session.error().message;
+        auto frame = (*session)->render_frame();
+        ASSERT_TRUE(frame) << frame.error().message;
+        const test::FinalImageViews v = coat_views(*frame, frame->hdr);
+        const glm::vec3 eye = (*session)->camera().position;
+        const test::Vec3 l{-light.direction.x, -light.direction.y, -light.direction.z};
+        double worst = 0, worst_uncoated = 0;
+        int checked = 0;
+        for (size_t p = 0; p < size_t(v.width) * v.height; p += 7) {
+            const float* n = &v.normal[p * 4];
+            const float* pos = &v.position[p * 4];
+            if (n[3] < 1.0f || v.hdr[p * 4 + 3] < 1.0f) continue;
+            // The views report the layer: weight, roughness and (no normal map) the surface's normal.
+            EXPECT_FLOAT_EQ(v.clearcoat[p * 4], 1.0f);
+            EXPECT_FLOAT_EQ(v.clearcoat[p * 4 + 1], 0.25f);
+            EXPECT_NEAR(v.clearcoat_normal[p * 4] * n[0] + v.clearcoat_normal[p * 4 + 1] * n[1] +
+                            v.clearcoat_normal[p * 4 + 2] * n[2], 1.0, 1e-5);
+            test::Vec3 view{eye.x - pos[0], eye.y - pos[1], eye.z - pos[2]};
+            const double len = std::sqrt(view[0] * view[0] + view[1] * view[1] + view[2] * view[2]);
+            for (double& c : view) c /= len;
+            const test::Vec3 normal{n[0], n[1], n[2]};
+            const double nv = normal[0] * view[0] + normal[1] * view[1] + normal[2] * view[2];
+            const double nl = normal[0] * l[0] + normal[1] * l[1] + normal[2] * l[2];
+            if (nv < 0.1 || nl < 0.1) continue;
+            test::TruthMaterial m;
+            m.albedo = {v.basecolor[p * 4], v.basecolor[p * 4 + 1], v.basecolor[p * 4 + 2]};
+            m.metallic = v.metallic[p * 4];
+            m.roughness = v.roughness[p * 4];
+            const test::Vec3 bare = test::brdf_cos(model, m, normal, view, l, true);
+            m.clearcoat = 1.0;
+            m.clearcoat_roughness = 0.25;
+            const test::Vec3 f = test::brdf_cos(model, m, normal, view, l, true);
+            for (int c = 0; c < 3; ++c) {
+                const double want = 3.0 * f[size_t(c)];
+                if (want < 1e-3) continue;
+                worst = std::max(worst, std::abs(v.hdr[p * 4 + size_t(c)] - want) / want);
+                worst_uncoated = std::max(worst_uncoated, std::abs(3.0 * bare[size_t(c)] - want) / want);
+            }
+            ++checked;
+        }
+        std::printf("%s model, coated, one directional light: %d pixels, worst relative error %.2e (the bare "
+                    "material's truth: %.2f)\n", brdf_model_name(model), checked, worst, worst_uncoated);
+        EXPECT_GT(checked, 1000);
+        EXPECT_LT(worst, 2e-3) << brdf_model_name(model);
+        EXPECT_GT(worst_uncoated, 0.1) << "the layer changes the image";
+    }
+    // The sun sky, glTF model: the default shading and the reference mode per group.
+    SunSkyFile sky;
+    const test::TexelLights texels = test::texel_lights(sky.env);
+    test::AccuracySettings settings;
+    settings.max_pixels = 1500;
+    RenderJob job = spheres_job(BrdfModel::gltf, sky.path);
+    job.frame.views = views;
+    auto session = coated_spheres(context, job);
+    ASSERT_TRUE(session) << session.error().message;
+    auto frame = (*session)->render_frame();
+    ASSERT_TRUE(frame) << frame.error().message;
+    ReferenceSettings rs;
+    rs.min_samples = rs.max_samples = 256;
+    rs.noise_target = 0;
+    auto reference = (*session)->render_reference(rs);
+    ASSERT_TRUE(reference) << reference.error().message;
+    const glm::vec3 e = (*session)->camera().position;
+    struct Measured {
+        const char* what;
+        const std::vector<float>& hdr;
+        double bound;
+    };
+    for (const Measured& c : {Measured{"default shading", frame->hdr, 0.05}, Measured{"reference 256 spp", reference->hdr, 0.03}}) {
+        const test::FinalImageAccuracy a =
+            test::final_image_accuracy(coat_views(*frame, c.hdr), {e.x, e.y, e.z}, texels, BrdfModel::gltf, settings);
+        std::printf("coated, gltf model, %s:\n%s", c.what, test::format_accuracy_table(a).c_str());
+        EXPECT_GT(a.pixels, 1000u);
+        for (const test::GroupError& g : a.groups) {
+            EXPECT_GT(g.pixels, 50u) << test::group_name(g);
+            EXPECT_LT(g.mean_rel, c.bound) << c.what << ": " << test::group_name(g);
+        }
     }
     EXPECT_EQ(context.validation_message_count(), messages);
 }

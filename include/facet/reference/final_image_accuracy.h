@@ -19,10 +19,12 @@ namespace facet::test {
 // A rendered frame: every image RGBA float, width x height, row-major. `hdr` is the
 // final colour before exposure (alpha = coverage); the others are the forward pass's
 // views (render/views.h): world normal and position (alpha 1 where covered),
-// base colour, metalness and roughness (in r).
+// base colour, metalness and roughness (in r); optionally the clear coat's (weight and
+// roughness in r, g) and its normal (empty: no clear coat).
 struct FinalImageViews {
     uint32_t width = 0, height = 0;
     std::span<const float> hdr, normal, position, basecolor, metallic, roughness;
+    std::span<const float> clearcoat, clearcoat_normal;
 };
 
 struct AccuracySettings {

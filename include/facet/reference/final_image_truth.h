@@ -16,6 +16,10 @@ struct TruthMaterial {
     double metallic = 0, roughness = 0.5;  // perceptual roughness: alpha = roughness^2
     double dielectric_f0 = 0.04;   // ior 1.5
     double specular_weight = 1;    // KHR_materials_specular's factor (dielectric part only)
+    // KHR_materials_clearcoat: a layer of weight `clearcoat` with its own perceptual
+    // roughness and unit normal (zero: the surface's normal).
+    double clearcoat = 0, clearcoat_roughness = 0;
+    Vec3 clearcoat_normal{0, 0, 0};
 };
 
 // f(l, v) (n.l) for unit n, v (towards the eye) and l (towards the light); zero when l is
@@ -27,6 +31,9 @@ struct TruthMaterial {
 //  thesis: F0 = mix(dielectric_f0, albedo, metallic), F = w' Schlick(F0, v.h) with
 //          w' = mix(specular_weight, 1, metallic), kd = (1 - F)(1 - metallic),
 //          f = kd albedo/pi + F D G / (4 n.l n.v), G Smith with Schlick-GGX.
+//  clearcoat (both models, the extension's layering): f (1 - c Fc(v.h)) (n.l) + c Fc(v.h)
+//          D V of the model's specular lobe at the layer's roughness (n_c.l), Fc =
+//          Schlick(0.04, v.h), zero where l is below both n and the layer's normal n_c.
 Vec3 brdf_cos(BrdfModel model, const TruthMaterial& m, const Vec3& n, const Vec3& v, const Vec3& l,
               bool punctual = false);
 

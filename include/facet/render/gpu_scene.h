@@ -31,6 +31,7 @@ struct GpuMaterial {
     glm::vec4 emissive_f0;
     glm::vec4 factors;
     glm::vec4 extra;
+    glm::vec4 clearcoat;  // KHR_materials_clearcoat: factor, roughness
 };
 
 struct GpuTexture {

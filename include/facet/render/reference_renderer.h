@@ -36,6 +36,8 @@ struct ReferenceSurface {
     const Image* roughness = nullptr;
     const Image* f0 = nullptr;
     const Image* emissive = nullptr;
+    const Image* clearcoat = nullptr;         // View::clearcoat: weight, roughness
+    const Image* clearcoat_normal = nullptr;  // View::clearcoat_normal
 };
 
 struct ReferenceStats {

@@ -25,6 +25,8 @@ enum class View : int {
     irradiance = 13,  // irradiance cube at n (E/pi)
     prefiltered = 14, // prefiltered specular at R
     specular_f0 = 15, // F0 (rgb) and the specular weight (a), for the reference renderer
+    clearcoat = 16,   // KHR_materials_clearcoat's weight (r) and roughness (g)
+    clearcoat_normal = 17,  // the clear coat's unit normal, world space
 };
 
 const char* view_name(View view);

@@ -76,6 +76,11 @@ struct Material {
     // KHR_materials_unlit: the colour is base colour x vertex colour, lighting ignored (the
     // loader clears the other PBR inputs, which are fallbacks for viewers without it).
     bool unlit = false;
+    // KHR_materials_clearcoat: a clear dielectric layer (ior 1.5) over the material, with
+    // weight `clearcoat` and its own perceptual roughness; its specular lobe is the model's
+    // (design.md, "BRDF models") and the layer below is dimmed by 1 - clearcoat x F(v.h).
+    float clearcoat = 0.0f;
+    float clearcoat_roughness = 0.0f;
     TextureRef base_color_texture;          // sRGB
     TextureRef metallic_roughness_texture;  // linear: G = roughness, B = metalness
     TextureRef normal_texture;              // linear, tangent space
