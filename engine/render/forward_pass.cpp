@@ -116,15 +116,21 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     auto define_if = [&](bool on, const char* name) {
         if (on) defines.push_back({name, "1"});
     };
-    const TextureRef* refs[] = {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture,
-                                &m.occlusion_texture, &m.emissive_texture};
-    const TextureSlot slots[] = {TextureSlot::base_color, TextureSlot::metallic_roughness, TextureSlot::normal,
-                                 TextureSlot::occlusion, TextureSlot::emissive};
-    const char* maps[] = {"HAS_BASE_COLOR_MAP", "HAS_METALLIC_ROUGHNESS_MAP", "HAS_NORMAL_MAP", "HAS_OCCLUSION_MAP",
-                          "HAS_EMISSIVE_MAP"};
-    const char* uvs[] = {"BASE_COLOR_UV", "METALLIC_ROUGHNESS_UV", "NORMAL_UV", "OCCLUSION_UV", "EMISSIVE_UV"};
-    for (size_t t = 0; t < 5; ++t) {
-        if (!scene.has_texture(material, slots[t])) continue;
+    const TextureRef* refs[] = {&m.base_color_texture,          &m.metallic_roughness_texture, &m.normal_texture,
+                                &m.occlusion_texture,           &m.emissive_texture,           &m.clearcoat_texture,
+                                &m.clearcoat_roughness_texture, &m.clearcoat_normal_texture};
+    const char* maps[] = {"HAS_BASE_COLOR_MAP",     "HAS_METALLIC_ROUGHNESS_MAP", "HAS_NORMAL_MAP",
+                          "HAS_OCCLUSION_MAP",      "HAS_EMISSIVE_MAP",           "HAS_CLEARCOAT_MAP",
+                          "HAS_CLEARCOAT_ROUGHNESS_MAP", "HAS_CLEARCOAT_NORMAL_MAP"};
+    const char* uvs[] = {"BASE_COLOR_UV", "METALLIC_ROUGHNESS_UV", "NORMAL_UV",           "OCCLUSION_UV",
+                         "EMISSIVE_UV",   "CLEARCOAT_UV",          "CLEARCOAT_ROUGHNESS_UV", "CLEARCOAT_NORMAL_UV"};
+    static_assert(std::size(refs) == size_t(TextureSlot::count) && std::size(maps) == std::size(refs) &&
+                  std::size(uvs) == std::size(refs));
+    const bool coated = m.clearcoat > 0.0f;
+    for (size_t t = 0; t < std::size(refs); ++t) {
+        const TextureSlot slot = TextureSlot(t);
+        if (!scene.has_texture(material, slot)) continue;
+        if (slot >= TextureSlot::clearcoat && !coated) continue;  // no layer: its textures are not read
         define_if(true, maps[t]);
         // The texture's coordinates where they are not TEXCOORD_0 as is: the uv set, then
         // KHR_texture_transform as a constant of the material's pipeline (no buffer read).
@@ -134,8 +140,10 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
             std::string uv = "(";
             uv.append(uv_transform_literal(ref.uv_transform)).append(" * vec3(").append(set).append(", 1.0))");
             defines.push_back({uvs[t], uv});
-            if (slots[t] == TextureSlot::normal)
+            if (slot == TextureSlot::normal)
                 defines.push_back({"NORMAL_TANGENT_FRAME", tangent_frame_literal(ref.uv_transform)});
+            if (slot == TextureSlot::clearcoat_normal)
+                defines.push_back({"CLEARCOAT_NORMAL_TANGENT_FRAME", tangent_frame_literal(ref.uv_transform)});
         } else if (ref.uv_set == 1) {
             defines.push_back({uvs[t], set});
         }
@@ -151,7 +159,7 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     define_if(mirrored && m.double_sided, "MIRRORED");
     define_if(m.unlit || primitive.topology != Topology::triangles, "UNLIT");
     define_if(primitive.topology == Topology::points, "POINTS");
-    define_if(m.clearcoat > 0.0f, "CLEARCOAT");
+    define_if(coated, "CLEARCOAT");
     define_if(ibl, "USE_IBL");
     define_if(settings.brdf == BrdfModel::thesis, "BRDF_THESIS");
     define_if(ibl && settings.multiscatter, "MULTISCATTER");
@@ -341,7 +349,10 @@ ForwardOutputs ForwardRenderer::add_draw_pass(RenderGraph& graph, const std::str
                 tex(TextureSlot::normal),
                 tex(TextureSlot::occlusion),
                 tex(TextureSlot::emissive),
-                DescriptorWrite::sampled_image(lobe_table_view_, lut_sampler_.handle())};
+                DescriptorWrite::sampled_image(lobe_table_view_, lut_sampler_.handle()),
+                tex(TextureSlot::clearcoat),
+                tex(TextureSlot::clearcoat_roughness),
+                tex(TextureSlot::clearcoat_normal)};
             pipeline->push_descriptors(cmd, writes);
             pipeline->push_constants(cmd, DrawConstants{i, p.material});
             vkCmdDrawIndexed(cmd, p.index_count, 1, p.first_index, int32_t(p.vertex_offset), 0);

@@ -116,7 +116,7 @@ std::vector<GpuMaterial> gpu_materials(const std::vector<Material>& materials) {
         out.push_back({m.base_color, glm::vec4(m.emissive, m.dielectric_f0),
                        glm::vec4(m.metallic, m.roughness, m.normal_scale, m.occlusion_strength),
                        glm::vec4(m.alpha_cutoff, m.specular_factor, m.occlusion, 0.0f),
-                       glm::vec4(m.clearcoat, m.clearcoat_roughness, 0.0f, 0.0f)});
+                       glm::vec4(m.clearcoat, m.clearcoat_roughness, m.clearcoat_normal_scale, 0.0f)});
     return out;
 }
 
@@ -158,8 +158,10 @@ GpuScene::GpuScene(Context& context, const Scene& scene)
             or_throw(Sampler::create(context, sampler_info(scene.samplers[i]), "gltf sampler " + std::to_string(i))));
 
     for (const Material& m : scene.materials) {
-        const TextureRef refs[] = {m.base_color_texture, m.metallic_roughness_texture, m.normal_texture,
-                                   m.occlusion_texture, m.emissive_texture};
+        const TextureRef refs[] = {m.base_color_texture,          m.metallic_roughness_texture, m.normal_texture,
+                                   m.occlusion_texture,           m.emissive_texture,           m.clearcoat_texture,
+                                   m.clearcoat_roughness_texture, m.clearcoat_normal_texture};
+        static_assert(std::size(refs) == size_t(TextureSlot::count));
         std::array<GpuTexture, size_t(TextureSlot::count)> slots{};
         std::array<bool, size_t(TextureSlot::count)> has{};
         for (size_t s = 0; s < slots.size(); ++s) {
@@ -173,7 +175,8 @@ GpuScene::GpuScene(Context& context, const Scene& scene)
                                        : default_sampler_.handle();
                 has[s] = true;
             } else {
-                Image& fallback = s == size_t(TextureSlot::normal) ? flat_normal_ : srgb ? white_srgb_ : white_linear_;
+                const bool normal = s == size_t(TextureSlot::normal) || s == size_t(TextureSlot::clearcoat_normal);
+                Image& fallback = normal ? flat_normal_ : srgb ? white_srgb_ : white_linear_;
                 slots[s] = {or_throw(fallback.view()), default_sampler_.handle()};
             }
         }

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "scene/gltf_errors.h"
+#include "scene/gltf_materials.h"
 
 namespace facet::gltf_detail {
 
@@ -46,6 +47,31 @@ void numbers(const tinygltf::Value& object, const char* key, int count, double* 
     }
 }
 
+// A textureInfo member of an extension's object (index, texCoord, its extensions), read as
+// the core textures are (gltf_materials.h); absent: no texture.
+TextureRef texture_info(const tinygltf::Model& model, const tinygltf::Value& object, const char* key,
+                        const std::string& where) {
+    if (!object.Has(key)) return {};
+    const std::string at = where + "." + key;
+    const tinygltf::Value& info = object.Get(key);
+    if (!info.IsObject()) fail(at + " must be an object");
+    if (!info.Has("index") || !info.Get("index").IsInt()) fail(at + ".index must be an integer");
+    const int index = info.Get("index").GetNumberAsInt();
+    if (index < 0) fail(at + ".index " + std::to_string(index) + " is negative");
+    int tex_coord = 0;
+    if (info.Has("texCoord")) {
+        if (!info.Get("texCoord").IsInt()) fail(at + ".texCoord must be an integer");
+        tex_coord = info.Get("texCoord").GetNumberAsInt();
+    }
+    tinygltf::ExtensionMap extensions;
+    if (info.Has("extensions")) {
+        const tinygltf::Value& e = info.Get("extensions");
+        if (!e.IsObject()) fail(at + ".extensions must be an object");
+        for (const std::string& name : e.Keys()) extensions[name] = e.Get(name);
+    }
+    return texture_ref(model, index, tex_coord, extensions, where, key);
+}
+
 }  // namespace
 
 void read_texture_transform(const tinygltf::ExtensionMap& extensions, const std::string& where, TextureRef& ref) {
@@ -74,6 +100,7 @@ void read_unlit(const tinygltf::Material& m, Material& out) {
     if (m.extensions.find("KHR_materials_unlit") == m.extensions.end()) return;
     out.unlit = true;
     out.clearcoat = 0.0f;
+    out.clearcoat_texture = out.clearcoat_roughness_texture = out.clearcoat_normal_texture = {};
     out.emissive = glm::vec3(0.0f);
     out.emissive_texture = {};
     out.normal_texture = {};
@@ -81,8 +108,8 @@ void read_unlit(const tinygltf::Material& m, Material& out) {
     out.metallic_roughness_texture = {};
 }
 
-void read_clearcoat(const tinygltf::Material& m, const std::string& where, Material& out,
-                    std::vector<std::string>& warnings) {
+void read_clearcoat(const tinygltf::Model& model, const tinygltf::Material& m, const std::string& where,
+                    Material& out) {
     const tinygltf::Value* coat = extension(m, "KHR_materials_clearcoat", where);
     if (!coat) return;
     const std::string at = where + ": KHR_materials_clearcoat";
@@ -91,10 +118,15 @@ void read_clearcoat(const tinygltf::Material& m, const std::string& where, Mater
     const double roughness = number(*coat, "clearcoatRoughnessFactor", 0.0, at);
     if (roughness < 0.0 || roughness > 1.0)
         fail(at + ".clearcoatRoughnessFactor " + number_text(roughness) + " is outside [0, 1]");
-    for (const char* texture : {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"})
-        if (coat->Has(texture)) warnings.push_back(at + ": " + texture + " is not drawn (the factors alone are)");
     out.clearcoat = float(factor);
     out.clearcoat_roughness = float(roughness);
+    out.clearcoat_texture = texture_info(model, *coat, "clearcoatTexture", at);
+    out.clearcoat_roughness_texture = texture_info(model, *coat, "clearcoatRoughnessTexture", at);
+    out.clearcoat_normal_texture = texture_info(model, *coat, "clearcoatNormalTexture", at);
+    if (coat->Has("clearcoatNormalTexture")) {
+        const std::string normal = at + ".clearcoatNormalTexture";
+        out.clearcoat_normal_scale = float(number(coat->Get("clearcoatNormalTexture"), "scale", 1.0, normal));
+    }
 }
 
 void read_dielectric_extensions(const tinygltf::Material& m, const std::string& where, Material& out,

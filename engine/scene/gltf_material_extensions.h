@@ -29,10 +29,10 @@ void read_texture_transform(const tinygltf::ExtensionMap& extensions, const std:
 void read_unlit(const tinygltf::Material& material, Material& out);
 
 // KHR_materials_clearcoat: clearcoatFactor and clearcoatRoughnessFactor into out.clearcoat
-// and out.clearcoat_roughness (each in [0, 1], else an error). Its three textures are not
-// drawn (the factors alone are): a warning each.
-void read_clearcoat(const tinygltf::Material& material, const std::string& where, Material& out,
-                    std::vector<std::string>& warnings);
+// and out.clearcoat_roughness (each in [0, 1], else an error), its three textures (with
+// texCoord and KHR_texture_transform, as the core textures) and the normal texture's scale.
+void read_clearcoat(const tinygltf::Model& model, const tinygltf::Material& material, const std::string& where,
+                    Material& out);
 
 void read_dielectric_extensions(const tinygltf::Material& material, const std::string& where, Material& out,
                                 std::vector<std::string>& warnings);

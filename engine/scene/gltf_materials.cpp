@@ -11,8 +11,6 @@
 
 namespace facet::gltf_detail {
 
-namespace {
-
 TextureRef texture_ref(const tinygltf::Model& model, int texture, int tex_coord, const tinygltf::ExtensionMap& extensions,
                        const std::string& where, const char* slot) {
     TextureRef ref;
@@ -35,6 +33,8 @@ TextureRef texture_ref(const tinygltf::Model& model, int texture, int tex_coord,
     read_texture_transform(extensions, name, ref);
     return ref;
 }
+
+namespace {
 
 uint32_t wrap_mode(int gl_wrap, const std::string& where) {
     switch (gl_wrap) {
@@ -70,7 +70,7 @@ Material convert_material(const tinygltf::Model& model, size_t index, std::vecto
         if (value.IsNumber()) out.emissive *= float(value.GetNumberAsDouble());
     }
     read_dielectric_extensions(m, where, out, warnings);
-    read_clearcoat(m, where, out, warnings);
+    read_clearcoat(model, m, where, out);
     out.normal_scale = float(m.normalTexture.scale);
     out.occlusion_strength = float(m.occlusionTexture.strength);
     if (m.alphaMode == "OPAQUE") {

@@ -15,6 +15,11 @@ namespace facet::gltf_detail {
 // is read but not drawn is said in `warnings`.
 Material convert_material(const tinygltf::Model& model, size_t index, std::vector<std::string>& warnings);
 
+// A textureInfo's texture `texture` (-1: none) read with texCoord `tex_coord` and its
+// KHR_texture_transform; errors name `where` and the slot.
+TextureRef texture_ref(const tinygltf::Model& model, int texture, int tex_coord, const tinygltf::ExtensionMap& extensions,
+                       const std::string& where, const char* slot);
+
 TextureSampler convert_sampler(const tinygltf::Sampler& s, size_t index);
 
 }  // namespace facet::gltf_detail

@@ -245,7 +245,7 @@ void place_mesh(const tinygltf::Model& model, int index, const std::vector<glm::
         std::vector<Vertex> vertices = deform_vertices(
             base, indices, copy.topology, deform, morphs ? std::span<const float>(weights) : std::span<const float>(),
             skinned ? std::span<const glm::mat4>(joints) : std::span<const glm::mat4>(),
-            material ? material->normal_texture.uv_set : 0u, at, mirrored);
+            material ? material->tangent_uv_set() : 0u, at, mirrored);
         if (mirrored && copy.topology == Topology::triangles) {
             // A mirroring skin turns the winding: its copy gets its own, reversed triangles.
             if (scene.indices.size() + copy.index_count > limits.max_indices)

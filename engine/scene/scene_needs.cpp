@@ -28,7 +28,8 @@ SceneNeeds scene_needs(const Scene& scene) {
         if (metal_min < 1.0f) needs.diffuse = true;
         // A clear coat reads the levels of its own roughness.
         if (m.clearcoat > 0.0f)
-            needs.min_roughness = std::min(needs.min_roughness, std::clamp(m.clearcoat_roughness, 0.0f, 1.0f));
+            needs.min_roughness = std::min(needs.min_roughness, std::clamp(m.clearcoat_roughness, 0.0f, 1.0f) *
+                                                                    channel_min(scene, m.clearcoat_roughness_texture, 1));
     }
     if (scene.materials.empty()) needs.min_roughness = 0.0f;
     return needs;

@@ -7,7 +7,8 @@
 // ALPHA_OPAQUE (alpha written as 1), ALPHA_MASK, ALPHA_BLEND, DOUBLE_SIDED, MIRRORED (the
 // instance's world matrix mirrors: its front faces wind clockwise), UNLIT (points, lines and
 // KHR_materials_unlit: base colour x vertex colour + emissive, which the loader clears for
-// unlit materials), CLEARCOAT (KHR_materials_clearcoat's layer), <SLOT>_UV (a texture's coordinates: its uv set and
+// unlit materials), CLEARCOAT (KHR_materials_clearcoat's layer) and its HAS_CLEARCOAT_MAP,
+// HAS_CLEARCOAT_ROUGHNESS_MAP, HAS_CLEARCOAT_NORMAL_MAP, <SLOT>_UV (a texture's coordinates: its uv set and
 // KHR_texture_transform) and NORMAL_TANGENT_FRAME, USE_IBL, BRDF_THESIS (the thesis' model
 // instead of glTF's), MULTISCATTER (energy compensation), DOMINANT_DIRECTION (bent specular
 // lookup), VIEW (what is written: render/views.glsl).
@@ -84,7 +85,7 @@ const uint brdf_model = FACET_BRDF_GLTF;
 layout(location = 0) in vec3 in_world;
 layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec2 in_uv;
-#ifdef HAS_NORMAL_MAP
+#if defined(HAS_NORMAL_MAP) || defined(HAS_CLEARCOAT_NORMAL_MAP)
 layout(location = 3) in vec4 in_tangent;
 #endif
 layout(location = 4) in vec4 in_color;
@@ -107,6 +108,15 @@ layout(location = 5) in vec2 in_uv1;
 #endif
 #ifndef EMISSIVE_UV
 #define EMISSIVE_UV in_uv
+#endif
+#ifndef CLEARCOAT_UV
+#define CLEARCOAT_UV in_uv
+#endif
+#ifndef CLEARCOAT_ROUGHNESS_UV
+#define CLEARCOAT_ROUGHNESS_UV in_uv
+#endif
+#ifndef CLEARCOAT_NORMAL_UV
+#define CLEARCOAT_NORMAL_UV in_uv
 #endif
 
 layout(location = 0) out vec4 out_color;
@@ -148,13 +158,16 @@ Surface surface_at(MaterialData m) {
     if (!gl_FrontFacing) n = -n;
 #endif
 #endif
-    vec3 geometric_n = n;  // a clear coat's normal (the extension's default: no normal map)
-#ifdef HAS_NORMAL_MAP
+    vec3 geometric_n = n;
+#if defined(HAS_NORMAL_MAP) || defined(HAS_CLEARCOAT_NORMAL_MAP)
     // Tangent frame of the glTF specification: bitangent = cross(n, t) * w.
     vec3 t = in_tangent.xyz - n * dot(n, in_tangent.xyz);
-    if (dot(t, t) > 1e-12) {
-        t = normalize(t);
-        vec3 b = cross(n, t) * (in_tangent.w < 0.0 ? -1.0 : 1.0);
+    bool has_frame = dot(t, t) > 1e-12;
+    t = has_frame ? normalize(t) : vec3(0.0);
+    mat3 frame_tbn = mat3(t, cross(n, t) * (in_tangent.w < 0.0 ? -1.0 : 1.0), n);
+#endif
+#ifdef HAS_NORMAL_MAP
+    if (has_frame) {
         vec3 tn = texture(normal_map, NORMAL_UV).xyz * 2.0 - 1.0;
         tn.xy *= m.factors.z;
 #ifdef NORMAL_TANGENT_FRAME
@@ -162,13 +175,33 @@ Surface surface_at(MaterialData m) {
         // render/forward_pass.cpp's tangent_frame_literal).
         tn.xy = NORMAL_TANGENT_FRAME * tn.xy;
 #endif
-        n = normalize(mat3(t, b, n) * tn);
+        n = normalize(frame_tbn * tn);
     }
 #endif
     s.shading = facet_surface(brdf_model, n, base.rgb, clamp(metallic, 0.0, 1.0), clamp(roughness, 0.0, 1.0), m.emissive_f0.a,
                               m.extra.y, occlusion);
 #ifdef CLEARCOAT
-    facet_surface_clearcoat(s.shading, clamp(m.clearcoat.x, 0.0, 1.0), clamp(m.clearcoat.y, 0.0, 1.0), geometric_n);
+    // The layer: its factors times its textures (R, G), its normal the geometry's unless it
+    // has a normal map of its own (the extension: not the surface's normal map).
+    float coat = m.clearcoat.x, coat_roughness = m.clearcoat.y;
+#ifdef HAS_CLEARCOAT_MAP
+    coat *= texture(clearcoat_map, CLEARCOAT_UV).r;
+#endif
+#ifdef HAS_CLEARCOAT_ROUGHNESS_MAP
+    coat_roughness *= texture(clearcoat_roughness_map, CLEARCOAT_ROUGHNESS_UV).g;
+#endif
+    vec3 coat_n = geometric_n;
+#ifdef HAS_CLEARCOAT_NORMAL_MAP
+    if (has_frame) {
+        vec3 tn = texture(clearcoat_normal_map, CLEARCOAT_NORMAL_UV).xyz * 2.0 - 1.0;
+        tn.xy *= m.clearcoat.z;
+#ifdef CLEARCOAT_NORMAL_TANGENT_FRAME
+        tn.xy = CLEARCOAT_NORMAL_TANGENT_FRAME * tn.xy;
+#endif
+        coat_n = normalize(frame_tbn * tn);
+    }
+#endif
+    facet_surface_clearcoat(s.shading, clamp(coat, 0.0, 1.0), clamp(coat_roughness, 0.0, 1.0), coat_n);
 #endif
     return s;
 }

@@ -28,7 +28,7 @@ struct MaterialData {
     vec4 emissive_f0;  // rgb emissive, a dielectric F0
     vec4 factors;      // metallic, roughness, normal scale, occlusion strength
     vec4 extra;        // alpha cutoff, specular factor, occlusion factor
-    vec4 clearcoat;    // KHR_materials_clearcoat: factor, roughness
+    vec4 clearcoat;    // KHR_materials_clearcoat: factor, roughness, normal texture scale
 };
 layout(binding = 3, std430) readonly buffer Materials { MaterialData materials[]; };
 
@@ -41,6 +41,9 @@ layout(binding = 9) uniform sampler2D normal_map;
 layout(binding = 10) uniform sampler2D occlusion_map;
 layout(binding = 11) uniform sampler2D emissive_map;
 layout(binding = 12) uniform sampler2D specular_lobes;  // the fitted lookups (render/specular_lobes.h)
+layout(binding = 13) uniform sampler2D clearcoat_map;            // KHR_materials_clearcoat: R x weight
+layout(binding = 14) uniform sampler2D clearcoat_roughness_map;  // G x roughness
+layout(binding = 15) uniform sampler2D clearcoat_normal_map;     // the layer's normal, tangent space
 
 layout(push_constant) uniform Draw {
     uint instance;

@@ -87,7 +87,10 @@ std::string textured(const std::string& image) {
            R"("scale":[2,2],"texCoord":0}}},"metallicFactor":0.5,"roughnessFactor":0.25,)"
            R"("metallicRoughnessTexture":{"index":0}},"normalTexture":{"index":0,"scale":0.5},)"
            R"("occlusionTexture":{"index":0,"strength":0.7},"emissiveTexture":{"index":0},"emissiveFactor":[1,1,1],)"
-           R"("extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":2}}},)"
+           R"("extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":2},)"
+           R"("KHR_materials_clearcoat":{"clearcoatFactor":0.8,"clearcoatRoughnessFactor":0.2,)"
+           R"("clearcoatTexture":{"index":0},"clearcoatRoughnessTexture":{"index":0,"texCoord":0},)"
+           R"("clearcoatNormalTexture":{"index":0,"scale":0.5,"extensions":{"KHR_texture_transform":{"rotation":1}}}}}},)"
            R"({"alphaMode":"MASK","alphaCutoff":0.3,"doubleSided":true,"normalTexture":{"index":0},)"
            R"("extensions":{"KHR_materials_ior":{"ior":1.33},"KHR_materials_specular":{"specularFactor":0.5,)"
            R"("specularColorFactor":[1,0.5,0.5],"specularTexture":{"index":0}}}},)"
@@ -95,7 +98,8 @@ std::string textured(const std::string& image) {
            R"("textures":[{"source":0,"sampler":0}],)"
            R"("samplers":[{"magFilter":9728,"minFilter":9987,"wrapS":33648,"wrapT":33071}],)"
            R"("images":[)" + image + "],"
-           R"("extensionsUsed":["KHR_materials_emissive_strength","KHR_materials_ior","KHR_materials_specular",)"
+           R"("extensionsUsed":["KHR_materials_clearcoat","KHR_materials_emissive_strength","KHR_materials_ior",)"
+           R"("KHR_materials_specular",)"
            R"("KHR_materials_unlit","KHR_texture_transform"],)" +
            kOneNode;
 }

@@ -386,6 +386,59 @@ TEST_F(GltfFeaturesTest, RotatedNormalMapTurnsItsTangentFrame) {
     EXPECT_NEAR(turned.z, 0.8f, 0.02f);
 }
 
+// KHR_materials_clearcoat's three textures reach the layer, as the views the reference mode
+// reads show: weight = clearcoatFactor x R and roughness = clearcoatRoughnessFactor x G
+// (a 2x1 texture, nearest: each half of the quad its texel), and the layer's normal map
+// (no TANGENT in the file: the loader makes them for it) turns the layer's normal alone,
+// with its KHR_texture_transform's rotation; the surface's normal stays the geometry's.
+TEST_F(GltfFeaturesTest, ClearcoatTexturesReachTheLayer) {
+    const unsigned char halves[] = {255, 128, 0, 255, 64, 255, 0, 255};  // (R, G): (1, 0.5) | (0.25, 1)
+    ASSERT_TRUE(write_png(dir.file("coat.png"), 2, 1, halves));
+    const unsigned char tilt[] = {204, 128, 230, 255};  // (0.6, 0, 0.8) in tangent space
+    ASSERT_TRUE(write_png(dir.file("tilt.png"), 1, 1, tilt));
+    std::vector<float> uv0;
+    for (size_t i = 0; i < 4; ++i) uv0.insert(uv0.end(), {(kQuad[3 * i] + 1.0f) / 2.0f, (1.0f - kQuad[3 * i + 1]) / 2.0f});
+    GltfBuilder b = quad_builder();
+    b.add(uv0, kFloat, "VEC2", 4);
+    b.add(std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, kFloat, "VEC3", 4);  // NORMAL
+    auto views_of = [&](const std::string& name, const std::string& normal_extension) {
+        const std::string members =
+            mesh_file(R"("POSITION": 0, "TEXCOORD_0": 2, "NORMAL": 3)", 1,
+                      R"({"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 0.8,
+                          "clearcoatRoughnessFactor": 0.6, "clearcoatTexture": {"index": 0},
+                          "clearcoatRoughnessTexture": {"index": 0},
+                          "clearcoatNormalTexture": {"index": 1)" + normal_extension + "}}}}") +
+            R"(, "textures": [{"source": 0, "sampler": 0}, {"source": 1, "sampler": 0}],
+  "images": [{"uri": "coat.png"}, {"uri": "tilt.png"}], "samplers": [{"magFilter": 9728, "minFilter": 9728}],
+  "extensionsUsed": ["KHR_materials_clearcoat", "KHR_texture_transform"])";
+        RenderJob views = job("builtin:white");
+        views.frame.views = {View::normal, View::clearcoat, View::clearcoat_normal};
+        const RenderedImages images = render(b.write(dir, name, members), views, false);
+        EXPECT_EQ(images.views.size(), 3u);
+        return images;
+    };
+    const RenderedImages plain = views_of("coat_plain", "");
+    ASSERT_EQ(plain.views.size(), 3u);
+    const Pixel left = at(plain.views[1].second, kSize / 2 - 8, kSize / 2), right = at(plain.views[1].second, kSize / 2 + 8, kSize / 2);
+    EXPECT_NEAR(left.r, 0.8f, 2e-3f);
+    EXPECT_NEAR(left.g, 0.6f * 128.0f / 255.0f, 2e-3f);
+    EXPECT_NEAR(right.r, 0.8f * 64.0f / 255.0f, 2e-3f);
+    EXPECT_NEAR(right.g, 0.6f, 2e-3f);
+    const Pixel n = at(plain.views[0].second, kSize / 2, kSize / 2);
+    EXPECT_NEAR(n.b, 1.0f, 1e-4f);  // the surface's normal: the geometry's
+    const Pixel coat_n = at(plain.views[2].second, kSize / 2, kSize / 2);
+    EXPECT_NEAR(coat_n.r, 0.6f, 0.02f);
+    EXPECT_NEAR(coat_n.g, 0.0f, 0.02f);
+    EXPECT_NEAR(coat_n.b, 0.8f, 0.02f);
+    const RenderedImages turned =
+        views_of("coat_turned", R"(, "extensions": {"KHR_texture_transform": {"rotation": 1.5707963}})");
+    ASSERT_EQ(turned.views.size(), 3u);
+    const Pixel turned_n = at(turned.views[2].second, kSize / 2, kSize / 2);
+    EXPECT_NEAR(turned_n.r, 0.0f, 0.02f);
+    EXPECT_NEAR(turned_n.g, 0.6f, 0.02f);
+    EXPECT_NEAR(turned_n.b, 0.8f, 0.02f);
+}
+
 // A unit cube, single-sided, mirrored by its node (scale -1 in x), seen from 45 degrees
 // between +Z and +X and lit along the same diagonal. Each face is coloured by its
 // vertices: with the winding flipped the outer faces are drawn (not the inner ones the

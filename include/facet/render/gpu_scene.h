@@ -19,7 +19,17 @@ namespace facet {
 
 class Context;
 
-enum class TextureSlot { base_color, metallic_roughness, normal, occlusion, emissive, count };
+enum class TextureSlot {
+    base_color,
+    metallic_roughness,
+    normal,
+    occlusion,
+    emissive,
+    clearcoat,            // KHR_materials_clearcoat: R
+    clearcoat_roughness,  // G
+    clearcoat_normal,
+    count
+};
 
 // std430 layouts of shaders/render/forward_interface.glsl.
 struct GpuInstance {
@@ -31,7 +41,7 @@ struct GpuMaterial {
     glm::vec4 emissive_f0;
     glm::vec4 factors;
     glm::vec4 extra;
-    glm::vec4 clearcoat;  // KHR_materials_clearcoat: factor, roughness
+    glm::vec4 clearcoat;  // KHR_materials_clearcoat: factor, roughness, normal texture scale
 };
 
 struct GpuTexture {

@@ -86,6 +86,18 @@ struct Material {
     TextureRef normal_texture;              // linear, tangent space
     TextureRef occlusion_texture;           // linear: R
     TextureRef emissive_texture;            // sRGB
+    // KHR_materials_clearcoat's textures: R x clearcoat, G x clearcoat_roughness, and the
+    // layer's own normal map (the geometry's normal without one), scaled as normalTexture.
+    TextureRef clearcoat_texture;            // linear: R
+    TextureRef clearcoat_roughness_texture;  // linear: G
+    TextureRef clearcoat_normal_texture;     // linear, tangent space
+    float clearcoat_normal_scale = 1.0f;
+
+    // The vertex tangents serve the normal maps: the surface's, else the clear coat's.
+    bool has_normal_map() const { return normal_texture.valid() || clearcoat_normal_texture.valid(); }
+    uint32_t tangent_uv_set() const {
+        return normal_texture.valid() ? normal_texture.uv_set : clearcoat_normal_texture.uv_set;
+    }
 };
 
 // How a primitive's indices are drawn: glTF's strips, fans and loops are converted to
