@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 
 #include <facet/io/image_io.h>
 #include <facet/reference/final_image_accuracy.h>
@@ -109,6 +110,55 @@ TEST(BrdfModelsTruth, EnvironmentLightingAndReferenceMatchEachModelsTruth) {
     EXPECT_EQ(context.validation_message_count(), messages);
 }
 
+// The light of DirectionalCheck below: intensity 3 from above left, in front.
+Light directional_light() {
+    Light light;
+    light.type = LightType::directional;
+    light.direction = glm::normalize(glm::vec3(-0.4f, -0.5f, -1.0f));
+    light.intensity = 3.0f;
+    return light;
+}
+
+// Every 7th covered pixel that faces the eye and `light` (n.v, n.l >= 0.1) against E x the
+// truth's brdf_cos for the material the views report, `layer` applied to it: the largest
+// relative distance over channels above 1e-3, and the same for the material without it.
+struct DirectionalCheck {
+    int checked = 0;
+    double worst = 0, worst_without_layer = 0;
+};
+DirectionalCheck check_directional(const test::FinalImageViews& v, const glm::vec3& eye, const Light& light,
+                                   BrdfModel model, const std::function<void(test::TruthMaterial&)>& layer) {
+    DirectionalCheck out;
+    const test::Vec3 l{-light.direction.x, -light.direction.y, -light.direction.z};
+    for (size_t p = 0; p < size_t(v.width) * v.height; p += 7) {
+        const float* n = &v.normal[p * 4];
+        const float* pos = &v.position[p * 4];
+        if (n[3] < 1.0f || v.hdr[p * 4 + 3] < 1.0f) continue;
+        test::Vec3 view{eye.x - pos[0], eye.y - pos[1], eye.z - pos[2]};
+        const double len = std::sqrt(view[0] * view[0] + view[1] * view[1] + view[2] * view[2]);
+        for (double& c : view) c /= len;
+        const test::Vec3 normal{n[0], n[1], n[2]};
+        const double nv = normal[0] * view[0] + normal[1] * view[1] + normal[2] * view[2];
+        const double nl = normal[0] * l[0] + normal[1] * l[1] + normal[2] * l[2];
+        if (nv < 0.1 || nl < 0.1) continue;
+        test::TruthMaterial m;
+        m.albedo = {v.basecolor[p * 4], v.basecolor[p * 4 + 1], v.basecolor[p * 4 + 2]};
+        m.metallic = v.metallic[p * 4];
+        m.roughness = v.roughness[p * 4];
+        const test::Vec3 bare = test::brdf_cos(model, m, normal, view, l, true);
+        layer(m);
+        const test::Vec3 f = test::brdf_cos(model, m, normal, view, l, true);
+        for (size_t c = 0; c < 3; ++c) {
+            const double want = light.intensity * f[c];
+            if (want < 1e-3) continue;
+            out.worst = std::max(out.worst, std::abs(v.hdr[p * 4 + c] - want) / want);
+            out.worst_without_layer = std::max(out.worst_without_layer, std::abs(light.intensity * bare[c] - want) / want);
+        }
+        ++out.checked;
+    }
+    return out;
+}
+
 // A directional light on every sphere of the grid, no environment: each pixel equals the
 // model's BRDF x cos x E (the thesis with its punctual k = (r+1)^2/8).
 TEST(BrdfModelsTruth, PunctualLightsAreEachModelsBrdf) {
@@ -116,47 +166,18 @@ TEST(BrdfModelsTruth, PunctualLightsAreEachModelsBrdf) {
     const uint32_t messages = context.validation_message_count();
     for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis}) {
         RenderJob job = spheres_job(model, "none");
-        Light light;
-        light.type = LightType::directional;
-        light.direction = glm::normalize(glm::vec3(-0.4f, -0.5f, -1.0f));
-        light.intensity = 3.0f;
+        const Light light = directional_light();
         job.extra_lights = {light};
         auto session = RenderSession::create(context, job);
         ASSERT_TRUE(session) << session.error().message;
         auto frame = (*session)->render_frame();
         ASSERT_TRUE(frame) << frame.error().message;
-        const test::FinalImageViews v = views_of(*frame, frame->hdr);
-        const glm::vec3 eye = (*session)->camera().position;
-        const test::Vec3 l{-light.direction.x, -light.direction.y, -light.direction.z};
-        double worst = 0;
-        int checked = 0;
-        for (size_t p = 0; p < size_t(v.width) * v.height; p += 7) {
-            const float* n = &v.normal[p * 4];
-            const float* pos = &v.position[p * 4];
-            if (n[3] < 1.0f || v.hdr[p * 4 + 3] < 1.0f) continue;
-            test::Vec3 view{eye.x - pos[0], eye.y - pos[1], eye.z - pos[2]};
-            const double len = std::sqrt(view[0] * view[0] + view[1] * view[1] + view[2] * view[2]);
-            for (double& c : view) c /= len;
-            const test::Vec3 normal{n[0], n[1], n[2]};
-            const double nv = normal[0] * view[0] + normal[1] * view[1] + normal[2] * view[2];
-            const double nl = normal[0] * l[0] + normal[1] * l[1] + normal[2] * l[2];
-            if (nv < 0.1 || nl < 0.1) continue;
-            test::TruthMaterial m;
-            m.albedo = {v.basecolor[p * 4], v.basecolor[p * 4 + 1], v.basecolor[p * 4 + 2]};
-            m.metallic = v.metallic[p * 4];
-            m.roughness = v.roughness[p * 4];
-            const test::Vec3 f = test::brdf_cos(model, m, normal, view, l, true);
-            for (int c = 0; c < 3; ++c) {
-                const double want = 3.0 * f[size_t(c)];
-                if (want < 1e-3) continue;
-                worst = std::max(worst, std::abs(v.hdr[p * 4 + size_t(c)] - want) / want);
-            }
-            ++checked;
-        }
+        const DirectionalCheck c = check_directional(views_of(*frame, frame->hdr), (*session)->camera().position, light,
+                                                     model, [](test::TruthMaterial&) {});
         std::printf("%s model, one directional light: %d pixels, worst relative error %.2e\n", brdf_model_name(model),
-                    checked, worst);
-        EXPECT_GT(checked, 1000);
-        EXPECT_LT(worst, 2e-3) << brdf_model_name(model);
+                    c.checked, c.worst);
+        EXPECT_GT(c.checked, 1000);
+        EXPECT_LT(c.worst, 2e-3) << brdf_model_name(model);
     }
     EXPECT_EQ(context.validation_message_count(), messages);
 }
@@ -191,57 +212,32 @@ TEST(BrdfModelsTruth, ClearcoatLayerMatchesTheTruthUnderALightAndTheEnvironment)
     for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis}) {
         RenderJob job = spheres_job(model, "none");
         job.frame.views = views;
-        Light light;
-        light.type = LightType::directional;
-        light.direction = glm::normalize(glm::vec3(-0.4f, -0.5f, -1.0f));
-        light.intensity = 3.0f;
+        const Light light = directional_light();
         job.extra_lights = {light};
         auto session = coated_spheres(context, job);
         ASSERT_TRUE(session) << session.error().message;
         auto frame = (*session)->render_frame();
         ASSERT_TRUE(frame) << frame.error().message;
         const test::FinalImageViews v = coat_views(*frame, frame->hdr);
-        const glm::vec3 eye = (*session)->camera().position;
-        const test::Vec3 l{-light.direction.x, -light.direction.y, -light.direction.z};
-        double worst = 0, worst_uncoated = 0;
-        int checked = 0;
-        for (size_t p = 0; p < size_t(v.width) * v.height; p += 7) {
-            const float* n = &v.normal[p * 4];
-            const float* pos = &v.position[p * 4];
-            if (n[3] < 1.0f || v.hdr[p * 4 + 3] < 1.0f) continue;
-            // The views report the layer: weight, roughness and (no normal map) the surface's normal.
-            EXPECT_FLOAT_EQ(v.clearcoat[p * 4], 1.0f);
-            EXPECT_FLOAT_EQ(v.clearcoat[p * 4 + 1], 0.25f);
-            EXPECT_NEAR(v.clearcoat_normal[p * 4] * n[0] + v.clearcoat_normal[p * 4 + 1] * n[1] +
-                            v.clearcoat_normal[p * 4 + 2] * n[2], 1.0, 1e-5);
-            test::Vec3 view{eye.x - pos[0], eye.y - pos[1], eye.z - pos[2]};
-            const double len = std::sqrt(view[0] * view[0] + view[1] * view[1] + view[2] * view[2]);
-            for (double& c : view) c /= len;
-            const test::Vec3 normal{n[0], n[1], n[2]};
-            const double nv = normal[0] * view[0] + normal[1] * view[1] + normal[2] * view[2];
-            const double nl = normal[0] * l[0] + normal[1] * l[1] + normal[2] * l[2];
-            if (nv < 0.1 || nl < 0.1) continue;
-            test::TruthMaterial m;
-            m.albedo = {v.basecolor[p * 4], v.basecolor[p * 4 + 1], v.basecolor[p * 4 + 2]};
-            m.metallic = v.metallic[p * 4];
-            m.roughness = v.roughness[p * 4];
-            const test::Vec3 bare = test::brdf_cos(model, m, normal, view, l, true);
-            m.clearcoat = 1.0;
-            m.clearcoat_roughness = 0.25;
-            const test::Vec3 f = test::brdf_cos(model, m, normal, view, l, true);
-            for (int c = 0; c < 3; ++c) {
-                const double want = 3.0 * f[size_t(c)];
-                if (want < 1e-3) continue;
-                worst = std::max(worst, std::abs(v.hdr[p * 4 + size_t(c)] - want) / want);
-                worst_uncoated = std::max(worst_uncoated, std::abs(3.0 * bare[size_t(c)] - want) / want);
-            }
-            ++checked;
+        // The views report the layer: weight, roughness and (no normal map) the surface's normal.
+        for (size_t p = 0; p < size_t(v.width) * v.height; ++p) {
+            if (v.normal[p * 4 + 3] < 1.0f) continue;
+            ASSERT_FLOAT_EQ(v.clearcoat[p * 4], 1.0f) << p;
+            ASSERT_FLOAT_EQ(v.clearcoat[p * 4 + 1], 0.25f) << p;
+            double along = 0;
+            for (size_t c = 0; c < 3; ++c) along += double(v.clearcoat_normal[p * 4 + c]) * v.normal[p * 4 + c];
+            ASSERT_NEAR(along, 1.0, 1e-5) << p;
         }
+        const DirectionalCheck c =
+            check_directional(v, (*session)->camera().position, light, model, [](test::TruthMaterial& m) {
+                m.clearcoat = 1.0;
+                m.clearcoat_roughness = 0.25;
+            });
         std::printf("%s model, coated, one directional light: %d pixels, worst relative error %.2e (the bare "
-                    "material's truth: %.2f)\n", brdf_model_name(model), checked, worst, worst_uncoated);
-        EXPECT_GT(checked, 1000);
-        EXPECT_LT(worst, 2e-3) << brdf_model_name(model);
-        EXPECT_GT(worst_uncoated, 0.1) << "the layer changes the image";
+                    "material's truth: %.2f)\n", brdf_model_name(model), c.checked, c.worst, c.worst_without_layer);
+        EXPECT_GT(c.checked, 1000);
+        EXPECT_LT(c.worst, 2e-3) << brdf_model_name(model);
+        EXPECT_GT(c.worst_without_layer, 0.1) << "the layer changes the image";
     }
     // The sun sky, glTF model: the default shading and the reference mode per group.
     SunSkyFile sky;

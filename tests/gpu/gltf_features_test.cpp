@@ -55,6 +55,17 @@ GltfBuilder quad_builder() {
     return b;
 }
 
+// The same with TEXCOORD_0 spanning the texture once (accessor 2, v = 0 at the top) and
+// NORMAL +Z (accessor 3).
+GltfBuilder lit_quad_builder() {
+    GltfBuilder b = quad_builder();
+    std::vector<float> uv0;
+    for (size_t i = 0; i < 4; ++i) uv0.insert(uv0.end(), {(kQuad[3 * i] + 1.0f) / 2.0f, (1.0f - kQuad[3 * i + 1]) / 2.0f});
+    b.add(uv0, kFloat, "VEC2", 4);
+    b.add(std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, kFloat, "VEC3", 4);
+    return b;
+}
+
 // The largest per-channel distance of the centre pixel from `colour`.
 float centre_off(const std::vector<float>& rgba, glm::vec3 colour) {
     const Pixel q = at(rgba, kSize / 2, kSize / 2);
@@ -356,11 +367,7 @@ TEST_F(GltfFeaturesTest, RotatedNormalMapTurnsItsTangentFrame) {
     const std::string png = dir.file("tilt.png");
     const unsigned char texel[] = {204, 128, 230, 255};
     ASSERT_TRUE(write_png(png, 1, 1, texel));
-    std::vector<float> uv0;
-    for (size_t i = 0; i < 4; ++i) uv0.insert(uv0.end(), {(kQuad[3 * i] + 1.0f) / 2.0f, (1.0f - kQuad[3 * i + 1]) / 2.0f});
-    GltfBuilder b = quad_builder();
-    b.add(uv0, kFloat, "VEC2", 4);
-    b.add(std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, kFloat, "VEC3", 4);  // NORMAL
+    GltfBuilder b = lit_quad_builder();
     auto normal_at_centre = [&](const std::string& name, const std::string& extension) {
         const std::string members =
             mesh_file(R"("POSITION": 0, "TEXCOORD_0": 2, "NORMAL": 3)", 1,
@@ -396,11 +403,7 @@ TEST_F(GltfFeaturesTest, ClearcoatTexturesReachTheLayer) {
     ASSERT_TRUE(write_png(dir.file("coat.png"), 2, 1, halves));
     const unsigned char tilt[] = {204, 128, 230, 255};  // (0.6, 0, 0.8) in tangent space
     ASSERT_TRUE(write_png(dir.file("tilt.png"), 1, 1, tilt));
-    std::vector<float> uv0;
-    for (size_t i = 0; i < 4; ++i) uv0.insert(uv0.end(), {(kQuad[3 * i] + 1.0f) / 2.0f, (1.0f - kQuad[3 * i + 1]) / 2.0f});
-    GltfBuilder b = quad_builder();
-    b.add(uv0, kFloat, "VEC2", 4);
-    b.add(std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, kFloat, "VEC3", 4);  // NORMAL
+    GltfBuilder b = lit_quad_builder();
     auto views_of = [&](const std::string& name, const std::string& normal_extension) {
         const std::string members =
             mesh_file(R"("POSITION": 0, "TEXCOORD_0": 2, "NORMAL": 3)", 1,
