@@ -313,6 +313,12 @@ void main() {
     prefiltered = env.prefiltered;
 #endif
 
+#ifdef UNLIT
+    // An unlit surface's colour is its base colour: no lobe, no lookup, no BRDF term (the
+    // component views show it as diffuse, the others 0).
+    diffuse = s.albedo;
+    specular = irradiance = prefiltered = vec3(0.0);
+#endif
 #if VIEW == VIEW_FINAL
     out_color = vec4(diffuse + specular + surface.emissive, surface.alpha);
 #elif VIEW == VIEW_NORMAL
@@ -347,6 +353,8 @@ void main() {
     out_color = vec4(s.clearcoat, s.clearcoat_roughness, 0.0, 1.0);
 #elif VIEW == VIEW_CLEARCOAT_NORMAL
     out_color = vec4(s.clearcoat_n, 1.0);
+#elif defined(UNLIT)
+    out_color = vec4(0.0, 0.0, 0.0, 1.0);  // D, F, G: no BRDF
 #else
     vec3 h = normalize(v + view_l);
     float NdotL = clamp(dot(n, view_l), 0.0, 1.0);

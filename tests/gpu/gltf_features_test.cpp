@@ -253,6 +253,15 @@ TEST_F(GltfFeaturesTest, UnlitMaterialIsItsBaseColourInTheFrameAndTheReference) 
     const auto reference = session->render_reference(ReferenceSettings{});
     ASSERT_TRUE(reference) << reference.error().message;
     EXPECT_LT(centre_off(reference->hdr, base), 1e-5f);
+    // The component views: all of it diffuse, nothing else.
+    RenderJob components = lit;
+    components.frame.views = {View::diffuse, View::specular, View::D, View::irradiance};
+    const RenderedImages views = render(
+        b.write(dir, "unlit_views", mesh_file(R"("POSITION": 0)", 1, material(R"("KHR_materials_unlit": {})"))),
+        components, false);
+    ASSERT_EQ(views.views.size(), 4u);
+    EXPECT_LT(centre_off(views.views[0].second, base), 1e-5f);
+    for (size_t i = 1; i < 4; ++i) EXPECT_LT(centre_off(views.views[i].second, glm::vec3(0.0f)), 1e-6f) << i;
     const RenderedImages shaded =
         render(b.write(dir, "lit", mesh_file(R"("POSITION": 0)", 1, material(""))), lit, false);
     ASSERT_EQ(shaded.hdr.size(), kSize * kSize * 4);
