@@ -57,6 +57,7 @@ FinalImageTruth final_image_truth(const FinalImageViews& in, const Vec3& eye, co
         m.roughness = roughness;
         m.dielectric_f0 = s.dielectric_f0;
         m.specular_weight = s.specular_weight;
+        m.specular_color = s.specular_color;
         if (coated && in.clearcoat[i * 4] > 0) {
             m.clearcoat = in.clearcoat[i * 4];
             m.clearcoat_roughness = in.clearcoat[i * 4 + 1];

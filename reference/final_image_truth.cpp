@@ -76,10 +76,15 @@ Vec3 layer_brdf_cos(BrdfModel model, const TruthMaterial& m, const Vec3& n, cons
     Vec3 f;
     if (model == BrdfModel::gltf) {
         const double DV = D * visibility_height_correlated(n_l, n_v, a2);
-        const double f0 = std::min(m.dielectric_f0, 1.0);
-        const double Fd = f0 + (1 - f0) * schlick;
+        Vec3 Fd;
         for (size_t c = 0; c < 3; ++c) {
-            const double dielectric = (1 - m.specular_weight * Fd) * m.albedo[c] / pi + m.specular_weight * Fd * DV;
+            const double f0 = std::min(m.dielectric_f0 * m.specular_color[c], 1.0);
+            Fd[c] = f0 + (1 - f0) * schlick;
+        }
+        const double Fd_max = std::max({Fd[0], Fd[1], Fd[2]});
+        for (size_t c = 0; c < 3; ++c) {
+            const double dielectric =
+                (1 - m.specular_weight * Fd_max) * m.albedo[c] / pi + m.specular_weight * Fd[c] * DV;
             const double metal = (m.albedo[c] + (1 - m.albedo[c]) * schlick) * DV;
             f[c] = (1 - m.metallic) * dielectric + m.metallic * metal;
         }
@@ -90,7 +95,8 @@ Vec3 layer_brdf_cos(BrdfModel model, const TruthMaterial& m, const Vec3& n, cons
         const double spec = D * G / (4 * n_l * n_v);
         const double w = m.specular_weight * (1 - m.metallic) + m.metallic;
         for (size_t c = 0; c < 3; ++c) {
-            const double f0 = m.dielectric_f0 * (1 - m.metallic) + m.albedo[c] * m.metallic;
+            const double f0 =
+                std::min(m.dielectric_f0 * m.specular_color[c], 1.0) * (1 - m.metallic) + m.albedo[c] * m.metallic;
             const double F = w * (f0 + (1 - f0) * schlick);
             f[c] = (1 - F) * (1 - m.metallic) * m.albedo[c] / pi + F * spec;
         }

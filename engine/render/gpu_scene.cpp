@@ -116,7 +116,8 @@ std::vector<GpuMaterial> gpu_materials(const std::vector<Material>& materials) {
         out.push_back({m.base_color, glm::vec4(m.emissive, m.dielectric_f0),
                        glm::vec4(m.metallic, m.roughness, m.normal_scale, m.occlusion_strength),
                        glm::vec4(m.alpha_cutoff, m.specular_factor, m.occlusion, 0.0f),
-                       glm::vec4(m.clearcoat, m.clearcoat_roughness, m.clearcoat_normal_scale, 0.0f)});
+                       glm::vec4(m.clearcoat, m.clearcoat_roughness, m.clearcoat_normal_scale, 0.0f),
+                       glm::vec4(m.specular_color, 0.0f)});
     return out;
 }
 

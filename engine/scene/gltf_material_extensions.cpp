@@ -155,13 +155,9 @@ void read_dielectric_extensions(const tinygltf::Material& m, const std::string& 
             colour[i] = v.GetNumberAsDouble();
         }
     }
-    const double largest = std::max({colour[0], colour[1], colour[2]});
-    if (colour[0] != colour[1] || colour[1] != colour[2])
-        warnings.push_back(at + ": specularColorFactor [" + number_text(colour[0]) + ", " + number_text(colour[1]) +
-                           ", " + number_text(colour[2]) + "] is not grey: drawn uncoloured, by its largest component");
     for (const char* texture : {"specularTexture", "specularColorTexture"})
         if (spec->Has(texture)) warnings.push_back(at + ": " + texture + " is not drawn (the factors alone are)");
-    out.dielectric_f0 = float(std::min(double(out.dielectric_f0) * largest, 1.0));
+    out.specular_color = glm::vec3(float(colour[0]), float(colour[1]), float(colour[2]));
     out.specular_factor = float(factor);
 }
 

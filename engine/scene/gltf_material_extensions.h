@@ -4,10 +4,9 @@
 // - KHR_materials_ior: F0 = ((ior - 1) / (ior + 1))^2, outside ior 1; the schema allows
 //   ior >= 1 and ior = 0 (F0 = 1, the specular-glossiness conversion);
 // - KHR_materials_specular: dielectric F0 = min(F0(ior) x specularColor, 1) x specular and
-//   F90 = specular (the extension's "Implementation"), with specular = specularFactor. A
-//   grey specularColorFactor folds into F0 exactly; a coloured one, specularTexture and
-//   specularColorTexture are not drawn (the lobe's F0 is one number here): a warning each,
-//   the colour taken by its largest component.
+//   F90 = specular (the extension's "Implementation"), with specular = specularFactor and
+//   specularColorFactor into Material::specular_color; specularTexture and
+//   specularColorTexture are not drawn: a warning each.
 // Invalid values (ior in (0, 1), a factor out of its range) are errors naming the material.
 #include <string>
 #include <vector>

@@ -34,7 +34,7 @@ struct FacetSurface {
     float roughness;        // perceptual, 0..1; alpha = roughness^2
     vec3 F0;                // reflectance at normal incidence, mix(dielectric F0, albedo, metallic)
     float specular_weight;  // the specular factor for the dielectric part, mixed to 1 for metals
-    float dielectric_f0;    // the dielectric part's F0 (0.04 for ior 1.5)
+    vec3 dielectric_f0;     // the dielectric part's F0 (0.04 for ior 1.5; coloured: facet_surface_specular_color)
     float specular_factor;  // KHR_materials_specular's factor for the dielectric part (1: none)
     float occlusion;        // ambient occlusion, 0..1: scales environment and disk lights only
     // KHR_materials_clearcoat (facet_surface_clearcoat): a clear layer of ior 1.5 over the
@@ -55,7 +55,7 @@ FacetSurface facet_surface(uint brdf, vec3 n, vec3 albedo, float metallic, float
     s.roughness = roughness;
     s.F0 = mix(vec3(dielectric_f0), albedo, metallic);
     s.specular_weight = mix(specular_factor, 1.0, metallic);
-    s.dielectric_f0 = dielectric_f0;
+    s.dielectric_f0 = vec3(dielectric_f0);
     s.specular_factor = specular_factor;
     s.occlusion = occlusion;
     s.clearcoat = 0.0;
@@ -63,6 +63,15 @@ FacetSurface facet_surface(uint brdf, vec3 n, vec3 albedo, float metallic, float
     s.clearcoat_n = n;
     return s;
 }
+
+// KHR_materials_specular's specularColorFactor: the dielectric F0 per channel,
+// min(F0 x colour, 1) (call after facet_surface).
+void facet_surface_specular_color(inout FacetSurface s, vec3 colour) {
+    s.dielectric_f0 = min(s.dielectric_f0 * colour, vec3(1.0));
+    s.F0 = mix(s.dielectric_f0, s.albedo, s.metallic);
+}
+
+float facet_max3(vec3 x) { return max(max(x.r, x.g), x.b); }
 
 // Puts KHR_materials_clearcoat's layer over the surface: weight 0..1, perceptual roughness,
 // unit normal (the surface's where the layer has no normal map). The extension's BRDF:
@@ -92,9 +101,10 @@ float facet_clearcoat_fresnel(FacetSurface s, float VdotH) {
 void facet_fresnel(FacetSurface s, float VdotH, out vec3 F, out vec3 kd) {
     float x = clamp(1.0 - VdotH, 0.0, 1.0), x2 = x * x, w = x2 * x2 * x;  // (1 - v.h)^5
     if (s.brdf == FACET_BRDF_GLTF) {
-        float Fd = s.specular_factor * (s.dielectric_f0 + (1.0 - s.dielectric_f0) * w);
-        F = mix(vec3(Fd), s.albedo + (1.0 - s.albedo) * w, s.metallic);
-        kd = vec3((1.0 - Fd) * (1.0 - s.metallic));
+        // KHR_materials_specular: F per channel, the diffuse lobe keeps 1 - its largest.
+        vec3 Fd = s.specular_factor * (s.dielectric_f0 + (1.0 - s.dielectric_f0) * w);
+        F = mix(Fd, s.albedo + (1.0 - s.albedo) * w, s.metallic);
+        kd = vec3((1.0 - facet_max3(Fd)) * (1.0 - s.metallic));
     } else {
         F = s.specular_weight * (s.F0 + (1.0 - s.F0) * w);
         kd = (1.0 - F) * (1.0 - s.metallic);
@@ -210,9 +220,11 @@ vec4 facet_brdf_lut(sampler2D lut, float NdotV, float roughness) {
 // lobe's mean weight under uniform light, from the LUT.
 void facet_lut_albedo(FacetSurface s, vec4 lut, out vec3 E, out vec3 kd) {
     if (s.brdf == FACET_BRDF_GLTF) {
-        float Ed = s.specular_factor * (s.dielectric_f0 * lut.x + lut.y);
-        E = mix(vec3(Ed), s.albedo * lut.x + lut.y, s.metallic);
-        float Fd = s.specular_factor * (s.dielectric_f0 + (1.0 - s.dielectric_f0) * lut.w);
+        vec3 Ed = s.specular_factor * (s.dielectric_f0 * lut.x + lut.y);
+        E = mix(Ed, s.albedo * lut.x + lut.y, s.metallic);
+        // The largest channel's Fresnel is the largest F0's at every angle: its mean is exact.
+        float f0 = facet_max3(s.dielectric_f0);
+        float Fd = s.specular_factor * (f0 + (1.0 - f0) * lut.w);
         kd = vec3((1.0 - Fd) * (1.0 - s.metallic));
     } else {
         E = s.specular_weight * (s.F0 * lut.x + lut.y);

@@ -180,6 +180,7 @@ Surface surface_at(MaterialData m) {
 #endif
     s.shading = facet_surface(brdf_model, n, base.rgb, clamp(metallic, 0.0, 1.0), clamp(roughness, 0.0, 1.0), m.emissive_f0.a,
                               m.extra.y, occlusion);
+    facet_surface_specular_color(s.shading, m.specular_color.rgb);
 #ifdef CLEARCOAT
     // The layer: its factors times its textures (R, G), its normal the geometry's unless it
     // has a normal map of its own (the extension: not the surface's normal map).
@@ -348,7 +349,7 @@ void main() {
 #elif VIEW == VIEW_PREFILTERED
     out_color = vec4(prefiltered, 1.0);
 #elif VIEW == VIEW_SPECULAR_F0
-    out_color = vec4(vec3(s.dielectric_f0), s.specular_factor);
+    out_color = vec4(s.dielectric_f0, s.specular_factor);
 #elif VIEW == VIEW_CLEARCOAT
     out_color = vec4(s.clearcoat, s.clearcoat_roughness, 0.0, 1.0);
 #elif VIEW == VIEW_CLEARCOAT_NORMAL

@@ -29,6 +29,7 @@ struct MaterialData {
     vec4 factors;      // metallic, roughness, normal scale, occlusion strength
     vec4 extra;        // alpha cutoff, specular factor, occlusion factor
     vec4 clearcoat;    // KHR_materials_clearcoat: factor, roughness, normal texture scale
+    vec4 specular_color;  // KHR_materials_specular's colour (rgb)
 };
 layout(binding = 3, std430) readonly buffer Materials { MaterialData materials[]; };
 

@@ -181,7 +181,8 @@ void main() {
     vec4 f0 = texelFetch(f0_view, pixel, 0);  // the dielectric F0 and specular factor
     s.shading = facet_surface((params.env.w & 1u) != 0u ? FACET_BRDF_THESIS : FACET_BRDF_GLTF, normalize(normal.xyz),
                               texelFetch(basecolor_view, pixel, 0).rgb, texelFetch(metallic_view, pixel, 0).r,
-                              texelFetch(roughness_view, pixel, 0).r, f0.r, f0.a, 1.0);
+                              texelFetch(roughness_view, pixel, 0).r, 1.0, f0.a, 1.0);
+    facet_surface_specular_color(s.shading, f0.rgb);
     s.v = normalize(params.camera_position.xyz - position.xyz);
     s.NdotV = clamp(dot(s.shading.n, s.v), 0.0, 1.0);
     s.p_specular = s.shading.specular_weight <= 0.0 ? 0.0 : mix(0.5, 1.0, s.shading.metallic);

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <tuple>
 
 #include <facet/io/image_io.h>
 #include <facet/reference/final_image_accuracy.h>
@@ -187,14 +188,20 @@ TEST(BrdfModelsTruth, PunctualLightsAreEachModelsBrdf) {
 // texels resolves it) on every sphere; the coat's views, a directional light pixel by pixel
 // and the sun sky per group, the forward pass (default shading) and the reference mode,
 // each against the truth with the layer (final_image_truth.h).
-Result<std::unique_ptr<RenderSession>> coated_spheres(Context& context, const RenderJob& job) {
+// builtin:spheres with `change` made to every material.
+Result<std::unique_ptr<RenderSession>> spheres_with(Context& context, const RenderJob& job,
+                                                    const std::function<void(Material&)>& change) {
     auto scene = builtin_scene("builtin:spheres");
     if (!scene) return scene.error();
-    for (Material& m : scene->materials) {
+    for (Material& m : scene->materials) change(m);
+    return RenderSession::create(context, job, std::move(*scene));
+}
+
+Result<std::unique_ptr<RenderSession>> coated_spheres(Context& context, const RenderJob& job) {
+    return spheres_with(context, job, [](Material& m) {
         m.clearcoat = 1.0f;
         m.clearcoat_roughness = 0.25f;
-    }
-    return RenderSession::create(context, job, std::move(*scene));
+    });
 }
 
 TEST(BrdfModelsTruth, ClearcoatLayerMatchesTheTruthUnderALightAndTheEnvironment) {
@@ -269,6 +276,72 @@ TEST(BrdfModelsTruth, ClearcoatLayerMatchesTheTruthUnderALightAndTheEnvironment)
         for (const test::GroupError& g : a.groups) {
             EXPECT_GT(g.pixels, 50u) << test::group_name(g);
             EXPECT_LT(g.mean_rel, c.bound) << c.what << ": " << test::group_name(g);
+        }
+    }
+    EXPECT_EQ(context.validation_message_count(), messages);
+}
+
+// KHR_materials_specular's colour (dielectric F0 per channel, min(F0 x colour, 1); the diffuse
+// lobe keeps 1 - the largest channel's Fresnel), ior 2 (F0 1/9) and colour (1, 0.3, 6) with
+// factor 0.8 on every sphere, both models: a directional light pixel by pixel and the sun sky
+// per group (the default shading and the reference mode), against the truth with the colour.
+TEST(BrdfModelsTruth, ColouredSpecularMatchesTheTruthUnderALightAndTheEnvironment) {
+    Context& context = test::gpu();
+    const uint32_t messages = context.validation_message_count();
+    const glm::vec3 colour(1.0f, 0.3f, 6.0f);
+    auto tint = [&](Material& m) {
+        m.dielectric_f0 = 1.0f / 9.0f;
+        m.specular_color = colour;
+        m.specular_factor = 0.8f;
+    };
+    auto truth_tint = [&](test::TruthMaterial& m) {
+        m.dielectric_f0 = 1.0 / 9.0;
+        m.specular_color = {colour.x, colour.y, colour.z};
+        m.specular_weight = 0.8;
+    };
+    SunSkyFile sky;
+    const test::TexelLights texels = test::texel_lights(sky.env);
+    for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis}) {
+        RenderJob job = spheres_job(model, "none");
+        const Light light = directional_light();
+        job.extra_lights = {light};
+        auto session = spheres_with(context, job, tint);
+        ASSERT_TRUE(session) << session.error().message;
+        auto frame = (*session)->render_frame();
+        ASSERT_TRUE(frame) << frame.error().message;
+        const DirectionalCheck c =
+            check_directional(views_of(*frame, frame->hdr), (*session)->camera().position, light, model, truth_tint);
+        std::printf("%s model, coloured specular, one directional light: %d pixels, worst relative error %.2e (the "
+                    "untinted truth: %.2f)\n", brdf_model_name(model), c.checked, c.worst, c.worst_without_layer);
+        EXPECT_GT(c.checked, 1000);
+        EXPECT_LT(c.worst, 2e-3) << brdf_model_name(model);
+        EXPECT_GT(c.worst_without_layer, 0.1) << "the colour changes the image";
+
+        RenderJob env_job = spheres_job(model, sky.path);
+        auto env_session = spheres_with(context, env_job, tint);
+        ASSERT_TRUE(env_session) << env_session.error().message;
+        auto env_frame = (*env_session)->render_frame();
+        ASSERT_TRUE(env_frame) << env_frame.error().message;
+        ReferenceSettings rs;
+        rs.min_samples = rs.max_samples = 256;
+        rs.noise_target = 0;
+        auto reference = (*env_session)->render_reference(rs);
+        ASSERT_TRUE(reference) << reference.error().message;
+        test::AccuracySettings settings;
+        settings.max_pixels = 1500;
+        settings.dielectric_f0 = 1.0 / 9.0;
+        settings.specular_color = {colour.x, colour.y, colour.z};
+        settings.specular_weight = 0.8;
+        const glm::vec3 e = (*env_session)->camera().position;
+        for (const auto& [what, hdr, bound] : {std::tuple<const char*, const std::vector<float>*, double>{
+                                                   "default shading", &env_frame->hdr, 0.05},
+                                               {"reference 256 spp", &reference->hdr, 0.03}}) {
+            const test::FinalImageAccuracy a =
+                test::final_image_accuracy(views_of(*env_frame, *hdr), {e.x, e.y, e.z}, texels, model, settings);
+            std::printf("coloured specular, %s model, %s:\n%s", brdf_model_name(model), what,
+                        test::format_accuracy_table(a).c_str());
+            EXPECT_GT(a.pixels, 1000u);
+            for (const test::GroupError& g : a.groups) EXPECT_LT(g.mean_rel, bound) << what << ": " << test::group_name(g);
         }
     }
     EXPECT_EQ(context.validation_message_count(), messages);

@@ -193,8 +193,8 @@ TEST_F(GltfFeaturesTest, VertexColouredQuad) {
 }
 
 // KHR_materials_ior and KHR_materials_specular reach the shading: the specular_f0 view
-// (what the reference mode and the truth read) holds ((ior - 1) / (ior + 1))^2 and
-// specularFactor exactly; under the white furnace a dielectric with specularFactor 0 is
+// (what the reference mode and the truth read) holds min(((ior - 1) / (ior + 1))^2 x
+// specularColorFactor, 1) per channel and specularFactor exactly; under the white furnace a dielectric with specularFactor 0 is
 // Lambert and shows its base colour (within 2e-3, as VertexColouredQuad), where the same
 // material without the extension shows more than 1% off it (its specular lobe).
 TEST_F(GltfFeaturesTest, IorAndSpecularExtensionsReachTheShading) {
@@ -208,13 +208,16 @@ TEST_F(GltfFeaturesTest, IorAndSpecularExtensionsReachTheShading) {
     const RenderedImages f0 = render(
         b.write(dir, "ior", mesh_file(R"("POSITION": 0)", 1,
                                       material(R"("KHR_materials_ior": {"ior": 2.42},
-                                                 "KHR_materials_specular": {"specularFactor": 0.5})"))),
+                                                 "KHR_materials_specular": {"specularFactor": 0.5,
+                                                 "specularColorFactor": [1, 0.5, 8]})"))),
         views, false);
     ASSERT_EQ(f0.views.size(), 1u);
+    // Per channel min(F0 x colour, 1): 0.172, 0.086, 1 (clamped).
     const double r = (2.42 - 1.0) / (2.42 + 1.0);
     const Pixel p = at(f0.views[0].second, 32, 32);
     EXPECT_NEAR(p.r, r * r, 1e-6);
-    EXPECT_NEAR(p.b, r * r, 1e-6);
+    EXPECT_NEAR(p.g, 0.5 * r * r, 1e-6);
+    EXPECT_NEAR(p.b, 1.0, 1e-6);
     EXPECT_NEAR(p.a, 0.5, 1e-6);
     const glm::vec3 base(0.5f, 0.6f, 0.7f);
     const RenderedImages lambert = render(

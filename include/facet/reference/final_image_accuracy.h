@@ -33,6 +33,7 @@ struct AccuracySettings {
     double min_n_v = 0.3;       // pixels with n.v <= this are left out
     double min_roughness = 0.2; // and those below this roughness
     double dielectric_f0 = 0.04, specular_weight = 1;
+    Vec3 specular_color{1, 1, 1};
     unsigned threads = 0;       // 0: std::thread::hardware_concurrency()
 };
 

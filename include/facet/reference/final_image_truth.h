@@ -16,6 +16,7 @@ struct TruthMaterial {
     double metallic = 0, roughness = 0.5;  // perceptual roughness: alpha = roughness^2
     double dielectric_f0 = 0.04;   // ior 1.5
     double specular_weight = 1;    // KHR_materials_specular's factor (dielectric part only)
+    Vec3 specular_color{1, 1, 1};  // its colour: the dielectric F0 is min(dielectric_f0 x colour, 1)
     // KHR_materials_clearcoat: a layer of weight `clearcoat` with its own perceptual
     // roughness and unit normal (zero: the surface's normal).
     double clearcoat = 0, clearcoat_roughness = 0;
@@ -26,9 +27,10 @@ struct TruthMaterial {
 // below the surface. `punctual` picks the thesis' k = (r+1)^2/8 instead of the
 // environment's r^2/2 (the glTF model has no such switch).
 //  gltf:   D GGX (alpha = max(r^2, 1e-4)), V height-correlated Smith,
-//          dielectric = (1 - w Fd) albedo/pi + w Fd D V, Fd = Schlick(dielectric_f0, v.h),
+//          dielectric = (1 - w max(Fd)) albedo/pi + w Fd D V, Fd = Schlick(F0, v.h) per
+//          channel, F0 = min(dielectric_f0 x specular_color, 1) (KHR_materials_specular),
 //          metal = Schlick(albedo, v.h) D V, f = mix(dielectric, metal, metallic).
-//  thesis: F0 = mix(dielectric_f0, albedo, metallic), F = w' Schlick(F0, v.h) with
+//  thesis: F0 = mix(that F0, albedo, metallic), F = w' Schlick(F0, v.h) with
 //          w' = mix(specular_weight, 1, metallic), kd = (1 - F)(1 - metallic),
 //          f = kd albedo/pi + F D G / (4 n.l n.v), G Smith with Schlick-GGX.
 //  clearcoat (both models, the extension's layering): f (1 - c Fc(v.h)) (n.l) + c Fc(v.h)

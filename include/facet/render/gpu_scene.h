@@ -42,6 +42,7 @@ struct GpuMaterial {
     glm::vec4 factors;
     glm::vec4 extra;
     glm::vec4 clearcoat;  // KHR_materials_clearcoat: factor, roughness, normal texture scale
+    glm::vec4 specular_color;  // KHR_materials_specular's colour (rgb)
 };
 
 struct GpuTexture {

@@ -70,6 +70,10 @@ struct Material {
     // Scales the specular lobe and its Fresnel (KHR_materials_specular's factor):
     // 0 leaves a Lambert-only material, as the white-furnace test needs.
     float specular_factor = 1.0f;
+    // KHR_materials_specular's colour: the dielectric F0 per channel is
+    // min(dielectric_f0 x specular_color, 1) (and the diffuse lobe keeps 1 - specular x the
+    // largest channel's Fresnel).
+    glm::vec3 specular_color{1.0f};
     // Ambient occlusion as a factor (the thesis' "AO" slider), times the occlusion
     // texture's value where there is one.
     float occlusion = 1.0f;
