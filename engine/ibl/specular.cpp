@@ -14,7 +14,7 @@ namespace facet {
 
 namespace {
 
-constexpr VkImageViewType array_view = cube_array_view;
+constexpr VkImageViewType specular_array_view = cube_array_view;
 
 }  // namespace
 
@@ -68,8 +68,8 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
         }, [p = *copy, environment, specular, n = env.width](PassContext& pc) {
             p->bind(pc.cmd());
             const DescriptorWrite writes[] = {
-                DescriptorWrite::storage_image(pc.view(environment, ImageRange::mip(0), array_view)),
-                DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(0), array_view))};
+                DescriptorWrite::storage_image(pc.view(environment, ImageRange::mip(0), specular_array_view)),
+                DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(0), specular_array_view))};
             p->push_descriptors(pc.cmd(), writes);
             dispatch_cube(pc, *p, n);
         });
@@ -104,7 +104,7 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
                 p->bind(pc.cmd());
                 const DescriptorWrite writes[] = {
                     DescriptorWrite::storage_buffer(pc.buffer(texels)),
-                    DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(m), array_view))};
+                    DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(m), specular_array_view))};
                 p->push_descriptors(pc.cmd(), writes);
                 p->push_constants(pc.cmd(), params);
                 dispatch_cube(pc, *p, n);
@@ -122,7 +122,7 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
                 p->bind(pc.cmd());
                 const DescriptorWrite writes[] = {
                     DescriptorWrite::sampled_image(pc.view(environment), sampler),
-                    DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(m), array_view))};
+                    DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(m), specular_array_view))};
                 p->push_descriptors(pc.cmd(), writes);
                 p->push_constants(pc.cmd(), lod);
                 dispatch_cube(pc, *p, n);
@@ -145,7 +145,7 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
             p->bind(pc.cmd());
             const DescriptorWrite writes[] = {
                 DescriptorWrite::sampled_image(pc.view(environment), sampler),
-                DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(m), array_view))};
+                DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(m), specular_array_view))};
             p->push_descriptors(pc.cmd(), writes);
             p->push_constants(pc.cmd(), params);
             dispatch_cube(pc, *p, n);

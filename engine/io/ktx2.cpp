@@ -60,7 +60,7 @@ const FormatInfo* find_format(uint32_t format) {
     return nullptr;
 }
 
-uint64_t align_up(uint64_t value, uint64_t alignment) { return (value + alignment - 1) / alignment * alignment; }
+uint64_t round_up(uint64_t value, uint64_t alignment) { return (value + alignment - 1) / alignment * alignment; }
 
 // "Mip Level Array": without supercompression each level starts at a multiple of
 // lcm(texel block size, 4).
@@ -88,7 +88,7 @@ public:
         auto p = static_cast<const std::byte*>(data);
         bytes.insert(bytes.end(), p, p + size);
     }
-    void pad_to(uint64_t alignment) { bytes.resize(align_up(bytes.size(), alignment), std::byte{0}); }
+    void pad_to(uint64_t alignment) { bytes.resize(round_up(bytes.size(), alignment), std::byte{0}); }
     std::vector<std::byte> bytes;
 };
 
@@ -208,7 +208,7 @@ std::string read_kvd(const Bytes& in, uint64_t offset, uint64_t length, Ktx2Imag
         std::string value(nul + 1, first + entry);
         if (!value.empty() && value.back() == '\0') value.pop_back();
         image.key_values.emplace_back(std::move(key), std::move(value));
-        at = std::min(end, align_up(at + entry, 4));
+        at = std::min(end, round_up(at + entry, 4));
     }
     return {};
 }

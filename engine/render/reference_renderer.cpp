@@ -17,20 +17,20 @@
 namespace facet {
 namespace {
 
-struct Params {
+struct ReferenceParams {
     glm::vec4 camera_position;
     glm::uvec4 env;    // width, height, light count, flags
     glm::uvec4 batch;  // samples, first sample index
     glm::vec4 scale;   // environment intensity
 };
-static_assert(sizeof(Params) == 64 && offsetof(Params, env) == 16 && offsetof(Params, batch) == 32 &&
-                  offsetof(Params, scale) == 48,
+static_assert(sizeof(ReferenceParams) == 64 && offsetof(ReferenceParams, env) == 16 &&
+                  offsetof(ReferenceParams, batch) == 32 && offsetof(ReferenceParams, scale) == 48,
               "Params in shaders/render/reference.comp");
 
 const ResourceState sampled{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                             VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
-const ResourceState storage{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
+const ResourceState storage_rw{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                               VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
 
 std::unique_ptr<Buffer> storage_buffer(Context& context, const void* data, size_t bytes, const char* name) {
     auto buffer = std::make_unique<Buffer>(or_throw(Buffer::create(context, std::max<size_t>(bytes, 16),
@@ -123,11 +123,12 @@ Result<ReferenceStats> ReferenceRenderer::accumulate(const ReferenceSurface& sur
         std::vector<ImageHandle> inputs;
         for (int i = 0; i < kViews; ++i)
             inputs.push_back(graph.import_image(view_names[i], {views[i]->handle(), views[i]->desc(), sampled, sampled}));
-        ImageHandle acc = graph.import_image("accumulation", {accumulation_->handle(), desc, storage, storage});
-        ImageHandle mom = graph.import_image("moments", {moments_->handle(), desc, storage, storage});
-        Params params{glm::vec4(frame.camera.position, 1.0f),
-                      glm::uvec4(env_width_, env_height_, uint32_t(lights.size()), frame.brdf == BrdfModel::thesis ? 1u : 0u),
-                      glm::uvec4(count, stats.samples, 0u, 0u), glm::vec4(env_intensity_, 0.0f, 0.0f, 0.0f)};
+        ImageHandle acc = graph.import_image("accumulation", {accumulation_->handle(), desc, storage_rw, storage_rw});
+        ImageHandle mom = graph.import_image("moments", {moments_->handle(), desc, storage_rw, storage_rw});
+        ReferenceParams params{glm::vec4(frame.camera.position, 1.0f),
+                               glm::uvec4(env_width_, env_height_, uint32_t(lights.size()),
+                                          frame.brdf == BrdfModel::thesis ? 1u : 0u),
+                               glm::uvec4(count, stats.samples, 0u, 0u), glm::vec4(env_intensity_, 0.0f, 0.0f, 0.0f)};
         graph.add_compute_pass("reference batch", [&](PassBuilder& b) {
             for (ImageHandle h : inputs) b.sample(h);
             acc = b.read_write_storage(acc);

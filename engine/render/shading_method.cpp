@@ -2,14 +2,14 @@
 
 namespace facet {
 namespace {
-constexpr const char* names[] = {"auto", "split-sum", "dominant", "lights", "lights+dominant"};
+constexpr const char* kShadingMethodNames[] = {"auto", "split-sum", "dominant", "lights", "lights+dominant"};
 }  // namespace
 
-const char* shading_method_name(ShadingMethod method) { return names[static_cast<int>(method)]; }
+const char* shading_method_name(ShadingMethod method) { return kShadingMethodNames[static_cast<int>(method)]; }
 
 std::optional<ShadingMethod> parse_shading_method(std::string_view name) {
     for (int i = 0; i < 5; ++i)
-        if (name == names[i]) return static_cast<ShadingMethod>(i);
+        if (name == kShadingMethodNames[i]) return static_cast<ShadingMethod>(i);
     return std::nullopt;
 }
 

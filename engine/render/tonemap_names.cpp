@@ -4,14 +4,14 @@
 
 namespace facet {
 namespace {
-constexpr const char* names[] = {"none", "reinhard", "exposure", "aces", "neutral"};
+constexpr const char* kTonemapNames[] = {"none", "reinhard", "exposure", "aces", "neutral"};
 }
 
-const char* tonemap_name(Tonemap tonemap) { return names[uint32_t(tonemap)]; }
+const char* tonemap_name(Tonemap tonemap) { return kTonemapNames[uint32_t(tonemap)]; }
 
 std::optional<Tonemap> parse_tonemap(const std::string& name) {
     for (uint32_t i = 0; i < 5; ++i)
-        if (name == names[i]) return Tonemap(i);
+        if (name == kTonemapNames[i]) return Tonemap(i);
     return std::nullopt;
 }
 

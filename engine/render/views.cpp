@@ -4,27 +4,27 @@
 
 namespace facet {
 namespace {
-constexpr const char* names[] = {"final", "normal", "position", "basecolor", "metallic",
-                                 "roughness", "occlusion", "emissive", "D", "F", "G",
-                                 "diffuse", "specular", "irradiance", "prefiltered", "f0",
-                                 "clearcoat", "clearcoat_normal"};
-constexpr int count = sizeof(names) / sizeof(names[0]);
+constexpr const char* kViewNames[] = {"final", "normal", "position", "basecolor", "metallic",
+                                      "roughness", "occlusion", "emissive", "D", "F", "G",
+                                      "diffuse", "specular", "irradiance", "prefiltered", "f0",
+                                      "clearcoat", "clearcoat_normal"};
+constexpr int kViewCount = sizeof(kViewNames) / sizeof(kViewNames[0]);
 }  // namespace
 
 const char* view_name(View view) {
     const int i = static_cast<int>(view);
-    return i >= 0 && i < count ? names[i] : "unknown";
+    return i >= 0 && i < kViewCount ? kViewNames[i] : "unknown";
 }
 
 std::optional<View> parse_view(const std::string& name) {
-    for (int i = 0; i < count; ++i)
-        if (name == names[i]) return static_cast<View>(i);
+    for (int i = 0; i < kViewCount; ++i)
+        if (name == kViewNames[i]) return static_cast<View>(i);
     return std::nullopt;
 }
 
 std::string view_names() {
     std::string list;
-    for (int i = 1; i < count; ++i) list += std::string(i > 1 ? "," : "") + names[i];
+    for (int i = 1; i < kViewCount; ++i) list += std::string(i > 1 ? "," : "") + kViewNames[i];
     return list;
 }
 
@@ -35,7 +35,7 @@ std::optional<std::vector<View>> parse_view_list(const std::string& list, std::s
     while (std::getline(in, item, ',')) {
         if (item.empty()) continue;
         if (item == "all") {
-            for (int i = 1; i < count; ++i) views.push_back(static_cast<View>(i));
+            for (int i = 1; i < kViewCount; ++i) views.push_back(static_cast<View>(i));
             continue;
         }
         auto view = parse_view(item);

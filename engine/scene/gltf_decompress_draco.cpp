@@ -20,7 +20,7 @@ namespace facet::gltf_detail {
 
 namespace {
 
-constexpr const char* kExtension = "KHR_draco_mesh_compression";
+constexpr const char* kDracoExtension = "KHR_draco_mesh_compression";
 
 size_t components_of(int type) {
     switch (type) {
@@ -161,8 +161,8 @@ void decode_indices(tinygltf::Model& model, tinygltf::Primitive& primitive, cons
 
 void decode_primitive(tinygltf::Model& model, size_t m, size_t p, Decoding& state) {
     const std::string where = label("mesh", m, model.meshes[m].name) + " primitive " + std::to_string(p) + " (" +
-                              kExtension + ")";
-    const tinygltf::Value* ext = extension_object(model.meshes[m].primitives[p].extensions, kExtension, where);
+                              kDracoExtension + ")";
+    const tinygltf::Value* ext = extension_object(model.meshes[m].primitives[p].extensions, kDracoExtension, where);
     if (!ext) return;
     const uint64_t view_index = field_uint(*ext, "bufferView", where);
     if (view_index >= model.bufferViews.size())
@@ -184,7 +184,7 @@ void decode_primitive(tinygltf::Model& model, size_t m, size_t p, Decoding& stat
     decode_indices(model, primitive, *mesh, state, where);
     // The faces are a triangle list whatever the primitive said (a strip is decoded to one).
     primitive.mode = TINYGLTF_MODE_TRIANGLES;
-    primitive.extensions.erase(kExtension);
+    primitive.extensions.erase(kDracoExtension);
 }
 
 }  // namespace

@@ -14,7 +14,7 @@ namespace facet::gltf_detail {
 
 namespace {
 
-constexpr const char* kExtension = "EXT_meshopt_compression";
+constexpr const char* kMeshoptExtension = "EXT_meshopt_compression";
 
 enum class Mode { attributes, triangles, indices };
 enum class Filter { none, octahedral, quaternion, exponential };
@@ -103,8 +103,8 @@ std::vector<uint8_t> decode(const Stream& s, const std::string& where) {
 void decompress_meshopt(tinygltf::Model& model) {
     DecodedBudget budget;
     for (size_t i = 0; i < model.bufferViews.size(); ++i) {
-        const std::string where = "bufferView " + std::to_string(i) + " (" + kExtension + ")";
-        const tinygltf::Value* ext = extension_object(model.bufferViews[i].extensions, kExtension, where);
+        const std::string where = "bufferView " + std::to_string(i) + " (" + kMeshoptExtension + ")";
+        const tinygltf::Value* ext = extension_object(model.bufferViews[i].extensions, kMeshoptExtension, where);
         if (!ext) continue;
         Stream s;
         s.source = buffer_range(model, field_uint(*ext, "buffer", where), field_uint(*ext, "byteOffset", where, 0),
@@ -127,7 +127,7 @@ void decompress_meshopt(tinygltf::Model& model) {
         tinygltf::BufferView& view = model.bufferViews[i];
         view.buffer = int(model.buffers.size() - 1);
         view.byteOffset = 0;
-        view.extensions.erase(kExtension);
+        view.extensions.erase(kMeshoptExtension);
     }
 }
 

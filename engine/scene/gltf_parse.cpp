@@ -32,7 +32,7 @@ bool is_glb(const std::string& path, const std::vector<uint8_t>& bytes) {
     return ext == ".glb" || (bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0);
 }
 
-uint32_t read_u32(const uint8_t* p) {
+uint32_t read_glb_u32(const uint8_t* p) {
     uint32_t value;
     std::memcpy(&value, p, 4);  // GLB is little-endian, as are the hosts we build for
     return value;
@@ -42,15 +42,15 @@ uint32_t read_u32(const uint8_t* p) {
 // chunk lengths are checked here before tinygltf copies the BIN chunk into a buffer.
 void check_glb_header(const std::vector<uint8_t>& bytes) {
     if (bytes.size() < 20) fail("truncated .glb: " + std::to_string(bytes.size()) + " bytes, less than its header");
-    if (read_u32(&bytes[4]) != 2) fail(".glb version " + std::to_string(read_u32(&bytes[4])) + " is not 2");
-    uint32_t length = read_u32(&bytes[8]);
+    if (read_glb_u32(&bytes[4]) != 2) fail(".glb version " + std::to_string(read_glb_u32(&bytes[4])) + " is not 2");
+    uint32_t length = read_glb_u32(&bytes[8]);
     if (length > bytes.size())
         fail("truncated .glb: its header says " + std::to_string(length) + " bytes, the file has " +
              std::to_string(bytes.size()));
-    const uint64_t bin_at = 20 + uint64_t(read_u32(&bytes[12]));
+    const uint64_t bin_at = 20 + uint64_t(read_glb_u32(&bytes[12]));
     if (bin_at > length) fail("truncated .glb: the JSON chunk runs past the end");
-    if (bin_at + 8 <= length && bin_at + 8 + uint64_t(read_u32(&bytes[bin_at])) > length)
-        fail("truncated .glb: its BIN chunk declares " + std::to_string(read_u32(&bytes[bin_at])) +
+    if (bin_at + 8 <= length && bin_at + 8 + uint64_t(read_glb_u32(&bytes[bin_at])) > length)
+        fail("truncated .glb: its BIN chunk declares " + std::to_string(read_glb_u32(&bytes[bin_at])) +
              " bytes, more than the file holds after its JSON");
 }
 
