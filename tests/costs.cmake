@@ -15,7 +15,7 @@ set(FACET_TEST_COSTS
   install.consumer_builds_and_runs 21
   LargeEnvironment.FacetBakeDownsamplesA16kFileWithinItsMemoryBudget 19
   Repetition.ValidatedCyclesReturnEveryObjectAndAllDeviceMemory 18
-  brdf_models_truth_test 17
+  brdf_models_truth_test 51
   HostEngine.RendersLikeFacetRenderWithNoValidationMessageAndNoSteadyAllocation 13
   FacetRender.BadFilesNameTheFileAndWriteNothing 13
   FacetViewer.ScreenshotMatchesFacetRender 11

@@ -112,12 +112,18 @@ TEST(Repetition, HostMemoryStaysFlatOver100Cycles) {
         }
     }
     const AllocatorStats gpu = context->allocator().stats();
-    const double heap_per_cycle = robust_growth_per_cycle(heap);
+    // A leak grows the heap over every stretch of cycles; a one-off step (once +1 MiB in the
+    // middle of a run on a loaded machine: a lazy cache or a new thread's arena) over one
+    // stretch only, so the check takes the smaller of the two halves' trends.
+    const long half = long(heap.size() / 2);
+    const double heap_first = robust_growth_per_cycle({heap.begin(), heap.begin() + half});
+    const double heap_second = robust_growth_per_cycle({heap.begin() + half, heap.end()});
+    const double heap_per_cycle = std::min(heap_first, heap_second);
     const double resident_per_cycle = robust_growth_per_cycle(resident);
-    std::printf("%d cycles; after %d warm-up cycles: heap %.0f -> %.0f KiB (trend %+.3f KiB/cycle), "
-                "resident %.0f -> %.0f KiB (trend %+.2f KiB/cycle); device memory: %u live allocations, "
+    std::printf("%d cycles; after %d warm-up cycles: heap %.0f -> %.0f KiB (trend %+.3f / %+.3f KiB/cycle in the two "
+                "halves), resident %.0f -> %.0f KiB (trend %+.2f KiB/cycle); device memory: %u live allocations, "
                 "%llu bytes reserved\n",
-                n, warm_up, heap.front(), heap.back(), heap_per_cycle, resident.front(), resident.back(),
+                n, warm_up, heap.front(), heap.back(), heap_first, heap_second, resident.front(), resident.back(),
                 resident_per_cycle, gpu.live_allocations, static_cast<unsigned long long>(gpu.bytes_reserved));
     EXPECT_EQ(gpu.live_allocations, 0u);
     EXPECT_EQ(gpu.bytes_reserved, 0u) << "device memory not returned";
