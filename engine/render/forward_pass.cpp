@@ -73,12 +73,13 @@ ForwardRenderer::ForwardRenderer(Context& context, ProgramCache& programs, uint3
       lut_sampler_(or_throw(Sampler::create(context, clamped_linear(), "brdf lut sampler"))) {
     if (frames_in_flight == 0) throw UsageError("ForwardRenderer: frames_in_flight must be at least 1");
     ImageDesc table;
+    table.format = VK_FORMAT_R32G32B32A32_UINT;
     table.width = kSpecularLobeTableWidth;
     table.height = kSpecularLobeTableHeight;
     lobe_table_ = or_throw(Image::create(context, table, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                                          "specular lobe table"));
-    const std::vector<float> texels = specular_lobe_table_texels();
-    or_throw(upload_image(context, lobe_table_, 0, 0, std::as_bytes(std::span<const float>(texels)),
+    const std::vector<uint32_t> texels = specular_lobe_table_texels();
+    or_throw(upload_image(context, lobe_table_, 0, 0, std::as_bytes(std::span<const uint32_t>(texels)),
                           VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
     lobe_table_view_ = or_throw(lobe_table_.view());
     slots_.resize(frames_in_flight);
@@ -118,19 +119,24 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     };
     const TextureRef* refs[] = {&m.base_color_texture,          &m.metallic_roughness_texture, &m.normal_texture,
                                 &m.occlusion_texture,           &m.emissive_texture,           &m.clearcoat_texture,
-                                &m.clearcoat_roughness_texture, &m.clearcoat_normal_texture};
+                                &m.clearcoat_roughness_texture, &m.clearcoat_normal_texture,   &m.specular_texture,
+                                &m.specular_color_texture};
     const char* maps[] = {"HAS_BASE_COLOR_MAP",     "HAS_METALLIC_ROUGHNESS_MAP", "HAS_NORMAL_MAP",
                           "HAS_OCCLUSION_MAP",      "HAS_EMISSIVE_MAP",           "HAS_CLEARCOAT_MAP",
-                          "HAS_CLEARCOAT_ROUGHNESS_MAP", "HAS_CLEARCOAT_NORMAL_MAP"};
+                          "HAS_CLEARCOAT_ROUGHNESS_MAP", "HAS_CLEARCOAT_NORMAL_MAP", "HAS_SPECULAR_MAP",
+                          "HAS_SPECULAR_COLOR_MAP"};
     const char* uvs[] = {"BASE_COLOR_UV", "METALLIC_ROUGHNESS_UV", "NORMAL_UV",           "OCCLUSION_UV",
-                         "EMISSIVE_UV",   "CLEARCOAT_UV",          "CLEARCOAT_ROUGHNESS_UV", "CLEARCOAT_NORMAL_UV"};
+                         "EMISSIVE_UV",   "CLEARCOAT_UV",          "CLEARCOAT_ROUGHNESS_UV", "CLEARCOAT_NORMAL_UV",
+                         "SPECULAR_UV",   "SPECULAR_COLOR_UV"};
     static_assert(std::size(refs) == size_t(TextureSlot::count) && std::size(maps) == std::size(refs) &&
                   std::size(uvs) == std::size(refs));
     const bool coated = m.clearcoat > 0.0f;
     for (size_t t = 0; t < std::size(refs); ++t) {
         const TextureSlot slot = TextureSlot(t);
         if (!scene.has_texture(material, slot)) continue;
-        if (slot >= TextureSlot::clearcoat && !coated) continue;  // no layer: its textures are not read
+        const bool coat_slot = slot == TextureSlot::clearcoat || slot == TextureSlot::clearcoat_roughness ||
+                               slot == TextureSlot::clearcoat_normal;
+        if (coat_slot && !coated) continue;  // no layer: its textures are not read
         define_if(true, maps[t]);
         // The texture's coordinates where they are not TEXCOORD_0 as is: the uv set, then
         // KHR_texture_transform as a constant of the material's pipeline (no buffer read).
@@ -349,10 +355,12 @@ ForwardOutputs ForwardRenderer::add_draw_pass(RenderGraph& graph, const std::str
                 tex(TextureSlot::normal),
                 tex(TextureSlot::occlusion),
                 tex(TextureSlot::emissive),
-                DescriptorWrite::sampled_image(lobe_table_view_, lut_sampler_.handle()),
+                DescriptorWrite::sampled_image(lobe_table_view_, nearest_.handle()),
                 tex(TextureSlot::clearcoat),
                 tex(TextureSlot::clearcoat_roughness),
-                tex(TextureSlot::clearcoat_normal)};
+                tex(TextureSlot::clearcoat_normal),
+                tex(TextureSlot::specular),
+                tex(TextureSlot::specular_color)};
             pipeline->push_descriptors(cmd, writes);
             pipeline->push_constants(cmd, DrawConstants{i, p.material});
             vkCmdDrawIndexed(cmd, p.index_count, 1, p.first_index, int32_t(p.vertex_offset), 0);

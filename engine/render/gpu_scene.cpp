@@ -161,12 +161,14 @@ GpuScene::GpuScene(Context& context, const Scene& scene)
     for (const Material& m : scene.materials) {
         const TextureRef refs[] = {m.base_color_texture,          m.metallic_roughness_texture, m.normal_texture,
                                    m.occlusion_texture,           m.emissive_texture,           m.clearcoat_texture,
-                                   m.clearcoat_roughness_texture, m.clearcoat_normal_texture};
+                                   m.clearcoat_roughness_texture, m.clearcoat_normal_texture,   m.specular_texture,
+                                   m.specular_color_texture};
         static_assert(std::size(refs) == size_t(TextureSlot::count));
         std::array<GpuTexture, size_t(TextureSlot::count)> slots{};
         std::array<bool, size_t(TextureSlot::count)> has{};
         for (size_t s = 0; s < slots.size(); ++s) {
-            const bool srgb = s == size_t(TextureSlot::base_color) || s == size_t(TextureSlot::emissive);
+            const bool srgb = s == size_t(TextureSlot::base_color) || s == size_t(TextureSlot::emissive) ||
+                              s == size_t(TextureSlot::specular_color);
             const TextureRef& ref = refs[s];
             if (ref.valid() && size_t(ref.image) < scene.images.size()) {
                 Image& image = texture_image(uint32_t(ref.image), srgb);

@@ -36,7 +36,7 @@ Scene convert(const tinygltf::Model& model, const GltfLimits& limits, int scene_
     scene.vertices.reserve(size_t(geometry.vertices));
     scene.indices.reserve(size_t(geometry.indices));
     for (size_t i = 0; i < model.samplers.size(); ++i) scene.samplers.push_back(convert_sampler(model.samplers[i], i));
-    for (size_t i = 0; i < model.materials.size(); ++i) scene.materials.push_back(convert_material(model, i, scene.warnings));
+    for (size_t i = 0; i < model.materials.size(); ++i) scene.materials.push_back(convert_material(model, i));
 
     bool needs_default_material = false;
     std::vector<PrimitiveDeform> deforms;  // by primitive, for the nodes that skin or morph them

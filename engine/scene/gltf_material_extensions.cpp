@@ -101,6 +101,7 @@ void read_unlit(const tinygltf::Material& m, Material& out) {
     out.unlit = true;
     out.clearcoat = 0.0f;
     out.clearcoat_texture = out.clearcoat_roughness_texture = out.clearcoat_normal_texture = {};
+    out.specular_texture = out.specular_color_texture = {};
     out.emissive = glm::vec3(0.0f);
     out.emissive_texture = {};
     out.normal_texture = {};
@@ -129,8 +130,8 @@ void read_clearcoat(const tinygltf::Model& model, const tinygltf::Material& m, c
     }
 }
 
-void read_dielectric_extensions(const tinygltf::Material& m, const std::string& where, Material& out,
-                                std::vector<std::string>& warnings) {
+void read_dielectric_extensions(const tinygltf::Model& model, const tinygltf::Material& m, const std::string& where,
+                                Material& out) {
     if (const tinygltf::Value* ior_ext = extension(m, "KHR_materials_ior", where)) {
         const std::string at = where + ": KHR_materials_ior";
         const double ior = number(*ior_ext, "ior", 1.5, at);
@@ -155,8 +156,8 @@ void read_dielectric_extensions(const tinygltf::Material& m, const std::string& 
             colour[i] = v.GetNumberAsDouble();
         }
     }
-    for (const char* texture : {"specularTexture", "specularColorTexture"})
-        if (spec->Has(texture)) warnings.push_back(at + ": " + texture + " is not drawn (the factors alone are)");
+    out.specular_texture = texture_info(model, *spec, "specularTexture", at);
+    out.specular_color_texture = texture_info(model, *spec, "specularColorTexture", at);
     out.specular_color = glm::vec3(float(colour[0]), float(colour[1]), float(colour[2]));
     out.specular_factor = float(factor);
 }

@@ -33,7 +33,9 @@ void read_unlit(const tinygltf::Material& material, Material& out);
 void read_clearcoat(const tinygltf::Model& model, const tinygltf::Material& material, const std::string& where,
                     Material& out);
 
-void read_dielectric_extensions(const tinygltf::Material& material, const std::string& where, Material& out,
-                                std::vector<std::string>& warnings);
+// KHR_materials_ior (the dielectric F0) and KHR_materials_specular: its factors and its two
+// textures (with texCoord and KHR_texture_transform, as the core textures).
+void read_dielectric_extensions(const tinygltf::Model& model, const tinygltf::Material& material,
+                                const std::string& where, Material& out);
 
 }  // namespace facet::gltf_detail

@@ -48,7 +48,7 @@ uint32_t wrap_mode(int gl_wrap, const std::string& where) {
 
 }  // namespace
 
-Material convert_material(const tinygltf::Model& model, size_t index, std::vector<std::string>& warnings) {
+Material convert_material(const tinygltf::Model& model, size_t index) {
     const tinygltf::Material& m = model.materials[index];
     std::string where = label("material", index, m.name);
     const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
@@ -69,7 +69,7 @@ Material convert_material(const tinygltf::Model& model, size_t index, std::vecto
         const tinygltf::Value& value = strength->second.Get("emissiveStrength");
         if (value.IsNumber()) out.emissive *= float(value.GetNumberAsDouble());
     }
-    read_dielectric_extensions(m, where, out, warnings);
+    read_dielectric_extensions(model, m, where, out);
     read_clearcoat(model, m, where, out);
     out.normal_scale = float(m.normalTexture.scale);
     out.occlusion_strength = float(m.occlusionTexture.strength);

@@ -11,9 +11,8 @@
 
 namespace facet::gltf_detail {
 
-// Material `index` with the extensions that change its BRDF (gltf_material_extensions.h); what
-// is read but not drawn is said in `warnings`.
-Material convert_material(const tinygltf::Model& model, size_t index, std::vector<std::string>& warnings);
+// Material `index` with the extensions that change its BRDF (gltf_material_extensions.h).
+Material convert_material(const tinygltf::Model& model, size_t index);
 
 // A textureInfo's texture `texture` (-1: none) read with texCoord `tex_coord` and its
 // KHR_texture_transform; errors name `where` and the slot.

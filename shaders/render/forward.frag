@@ -8,7 +8,8 @@
 // instance's world matrix mirrors: its front faces wind clockwise), UNLIT (points, lines and
 // KHR_materials_unlit: base colour x vertex colour + emissive, which the loader clears for
 // unlit materials), CLEARCOAT (KHR_materials_clearcoat's layer) and its HAS_CLEARCOAT_MAP,
-// HAS_CLEARCOAT_ROUGHNESS_MAP, HAS_CLEARCOAT_NORMAL_MAP, <SLOT>_UV (a texture's coordinates: its uv set and
+// HAS_CLEARCOAT_ROUGHNESS_MAP, HAS_CLEARCOAT_NORMAL_MAP, HAS_SPECULAR_MAP and HAS_SPECULAR_COLOR_MAP
+// (KHR_materials_specular's textures), <SLOT>_UV (a texture's coordinates: its uv set and
 // KHR_texture_transform) and NORMAL_TANGENT_FRAME, USE_IBL, BRDF_THESIS (the thesis' model
 // instead of glTF's), MULTISCATTER (energy compensation), DOMINANT_DIRECTION (bent specular
 // lookup), VIEW (what is written: render/views.glsl).
@@ -118,6 +119,12 @@ layout(location = 5) in vec2 in_uv1;
 #ifndef CLEARCOAT_NORMAL_UV
 #define CLEARCOAT_NORMAL_UV in_uv
 #endif
+#ifndef SPECULAR_UV
+#define SPECULAR_UV in_uv
+#endif
+#ifndef SPECULAR_COLOR_UV
+#define SPECULAR_COLOR_UV in_uv
+#endif
 
 layout(location = 0) out vec4 out_color;
 
@@ -178,9 +185,18 @@ Surface surface_at(MaterialData m) {
         n = normalize(frame_tbn * tn);
     }
 #endif
+    // KHR_materials_specular: its factors times its textures (A, RGB).
+    float specular_factor = m.extra.y;
+#ifdef HAS_SPECULAR_MAP
+    specular_factor *= texture(specular_factor_map, SPECULAR_UV).a;
+#endif
+    vec3 specular_color = m.specular_color.rgb;
+#ifdef HAS_SPECULAR_COLOR_MAP
+    specular_color *= texture(specular_color_map, SPECULAR_COLOR_UV).rgb;
+#endif
     s.shading = facet_surface(brdf_model, n, base.rgb, clamp(metallic, 0.0, 1.0), clamp(roughness, 0.0, 1.0), m.emissive_f0.a,
-                              m.extra.y, occlusion);
-    facet_surface_specular_color(s.shading, m.specular_color.rgb);
+                              specular_factor, occlusion);
+    facet_surface_specular_color(s.shading, specular_color);
 #ifdef CLEARCOAT
     // The layer: its factors times its textures (R, G), its normal the geometry's unless it
     // has a normal map of its own (the extension: not the surface's normal map).

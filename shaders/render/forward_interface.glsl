@@ -41,10 +41,12 @@ layout(binding = 8) uniform sampler2D metallic_roughness_map;
 layout(binding = 9) uniform sampler2D normal_map;
 layout(binding = 10) uniform sampler2D occlusion_map;
 layout(binding = 11) uniform sampler2D emissive_map;
-layout(binding = 12) uniform sampler2D specular_lobes;  // the fitted lookups (render/specular_lobes.h)
+layout(binding = 12) uniform usampler2D specular_lobes;  // the fitted lookups (render/specular_lobes.h)
 layout(binding = 13) uniform sampler2D clearcoat_map;            // KHR_materials_clearcoat: R x weight
 layout(binding = 14) uniform sampler2D clearcoat_roughness_map;  // G x roughness
 layout(binding = 15) uniform sampler2D clearcoat_normal_map;     // the layer's normal, tangent space
+layout(binding = 16) uniform sampler2D specular_factor_map;      // KHR_materials_specular: A x specularFactor
+layout(binding = 17) uniform sampler2D specular_color_map;       // RGB (sRGB) x specularColorFactor
 
 layout(push_constant) uniform Draw {
     uint instance;

@@ -1,8 +1,8 @@
 // KHR_materials_unlit read as a flag that clears the lit inputs; KHR_materials_ior and
 // KHR_materials_specular read into the dielectric lobe's F0 and strength (scene/gltf_material_extensions.h), against the extensions' formulas computed
 // here: F0 = ((ior - 1) / (ior + 1))^2, then min(F0 x specularColor, 1), and the
-// specular weight = specularFactor; what is not drawn is a warning, invalid values an
-// error naming the material. KHR_materials_clearcoat's factors read as they are (the
+// specular weight = specularFactor (its textures are drawn: tests/gpu/gltf_features_test.cpp);
+// invalid values an error naming the material. KHR_materials_clearcoat's factors read as they are (the
 // layer's shading is tested against the truth in tests/gpu/brdf_models_truth_test.cpp).
 #include <gtest/gtest.h>
 
@@ -79,18 +79,6 @@ TEST(GltfMaterialExtensions, SpecularScalesTheLobeAndItsColourTheF0) {
     EXPECT_EQ(off->materials[0].specular_factor, 0.0f);  // Lambert only
 }
 
-TEST(GltfMaterialExtensions, WhatIsNotDrawnIsAWarningNamingIt) {
-    TempDir dir;
-    const Result<Scene> scene = load_material(
-        dir, R"("KHR_materials_specular": {"specularColorFactor": [1, 0.5, 0.25], "specularTexture": {"index": 0},
-                 "specularColorTexture": {"index": 0}})");
-    ASSERT_TRUE(scene.ok()) << scene.error().message;
-    ASSERT_EQ(scene->warnings.size(), 2u);
-    EXPECT_EQ(scene->warnings[0], "material 'glass': KHR_materials_specular: specularTexture is not drawn (the factors "
-                                  "alone are)");
-    EXPECT_NE(scene->warnings[1].find("specularColorTexture is not drawn"), std::string::npos);
-}
-
 TEST(GltfMaterialExtensions, UnlitKeepsTheBaseColourAloneAndIsNoWarning) {
     TempDir dir;
     const Result<Scene> plain = load_material(dir, "");
@@ -141,6 +129,10 @@ TEST(GltfMaterialExtensions, InvalidValuesAreErrorsNamingTheMaterial) {
          "material 'glass': KHR_materials_specular.specularColorFactor must have 3 numbers"},
         {R"("KHR_materials_specular": {"specularColorFactor": [1, -1, 1]})",
          "material 'glass': KHR_materials_specular.specularColorFactor must have 3 finite numbers >= 0"},
+        {R"("KHR_materials_specular": {"specularTexture": {"index": 0}})",
+         "material 'glass': KHR_materials_specular: specularTexture texture 0 out of range (0 textures)"},
+        {R"("KHR_materials_specular": {"specularColorTexture": [0]})",
+         "material 'glass': KHR_materials_specular.specularColorTexture must be an object"},
         {R"("KHR_materials_clearcoat": {"clearcoatFactor": 2})",
          "material 'glass': KHR_materials_clearcoat.clearcoatFactor 2 is outside [0, 1]"},
         {R"("KHR_materials_clearcoat": {"clearcoatRoughnessFactor": -0.5})",

@@ -110,10 +110,12 @@ TEST(ShaderReflection, ForwardVertexAndFragmentMergeIntoOneLayout) {
                      {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                      {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                      {11, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                     {12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},   // the fitted lookups' table
+                     {12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},   // the fitted lookups' table (usampler2D)
                      {13, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},   // the clear coat's three textures
                      {14, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                     {15, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
+                     {15, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                     {16, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},   // KHR_materials_specular's two
+                     {17, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
                     "forward");
     EXPECT_EQ(merged->push_constant_bytes, 8u);  // uint instance, uint material
 }

@@ -93,7 +93,7 @@ std::string textured(const std::string& image) {
            R"("clearcoatNormalTexture":{"index":0,"scale":0.5,"extensions":{"KHR_texture_transform":{"rotation":1}}}}}},)"
            R"({"alphaMode":"MASK","alphaCutoff":0.3,"doubleSided":true,"normalTexture":{"index":0},)"
            R"("extensions":{"KHR_materials_ior":{"ior":1.33},"KHR_materials_specular":{"specularFactor":0.5,)"
-           R"("specularColorFactor":[1,0.5,0.5],"specularTexture":{"index":0}}}},)"
+           R"("specularColorFactor":[1,0.5,0.5],"specularTexture":{"index":0},"specularColorTexture":{"index":0,"texCoord":0}}}},)"
            R"({"alphaMode":"BLEND","extensions":{"KHR_materials_unlit":{}}}],)"
            R"("textures":[{"source":0,"sampler":0}],)"
            R"("samplers":[{"magFilter":9728,"minFilter":9987,"wrapS":33648,"wrapT":33071}],)"

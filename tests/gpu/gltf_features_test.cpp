@@ -231,6 +231,46 @@ TEST_F(GltfFeaturesTest, IorAndSpecularExtensionsReachTheShading) {
     EXPECT_GT(centre_off(plain.hdr, base), 0.01f);
 }
 
+// KHR_materials_specular's textures: specularTexture's A times specularFactor and
+// specularColorTexture's RGB (sRGB) times specularColorFactor, per pixel, into the dielectric
+// F0 min(0.04 x colour, 1) and the specular weight (the view the reference mode reads); the
+// colour texture through KHR_texture_transform (shifted by half: its texels swap sides).
+TEST_F(GltfFeaturesTest, SpecularTexturesReachTheDielectricLobe) {
+    // Two images: OpenImageIO writes a PNG's colour divided by its alpha (it takes the
+    // pixels as premultiplied).
+    const unsigned char strength[] = {0, 0, 0, 128, 0, 0, 0, 255};         // A: left | right
+    const unsigned char colour[] = {188, 64, 255, 255, 255, 255, 255, 255};  // RGB: left | right
+    ASSERT_TRUE(write_png(dir.file("spec_a.png"), 2, 1, strength));
+    ASSERT_TRUE(write_png(dir.file("spec_rgb.png"), 2, 1, colour));
+    GltfBuilder b = lit_quad_builder();
+    const std::string members =
+        mesh_file(R"("POSITION": 0, "TEXCOORD_0": 2, "NORMAL": 3)", 1,
+                  R"({"pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0.5},
+                      "extensions": {"KHR_materials_specular": {"specularFactor": 0.5, "specularColorFactor": [2, 2, 8],
+                        "specularTexture": {"index": 0},
+                        "specularColorTexture": {"index": 1, "extensions": {"KHR_texture_transform": {"offset": [0.5, 0]}}}}}})") +
+        R"(, "textures": [{"source": 0, "sampler": 0}, {"source": 1, "sampler": 0}],
+  "images": [{"uri": "spec_a.png"}, {"uri": "spec_rgb.png"}], "samplers": [{"magFilter": 9728, "minFilter": 9728}],
+  "extensionsUsed": ["KHR_materials_specular", "KHR_texture_transform"])";
+    RenderJob views = job("builtin:white");
+    views.frame.views = {View::specular_f0};
+    const RenderedImages images = render(b.write(dir, "specular_textures", members), views, false);
+    ASSERT_EQ(images.views.size(), 1u);
+    auto srgb = [](double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); };
+    const Pixel left = at(images.views[0].second, kSize / 2 - 8, kSize / 2);
+    const Pixel right = at(images.views[0].second, kSize / 2 + 8, kSize / 2);
+    // Left: A 128 from specularTexture, the colour texture's right (white) texel.
+    EXPECT_NEAR(left.a, 0.5 * 128.0 / 255.0, 1e-4);
+    EXPECT_NEAR(left.r, 0.04 * 2.0, 1e-4);
+    EXPECT_NEAR(left.g, 0.04 * 2.0, 1e-4);
+    EXPECT_NEAR(left.b, 0.04 * 8.0, 1e-4);
+    // Right: A 255, the colour texture's left texel (188, 64, 255) decoded from sRGB.
+    EXPECT_NEAR(right.a, 0.5, 1e-4);
+    EXPECT_NEAR(right.r, 0.04 * 2.0 * srgb(188.0 / 255.0), 2e-4);
+    EXPECT_NEAR(right.g, 0.04 * 2.0 * srgb(64.0 / 255.0), 2e-4);
+    EXPECT_NEAR(right.b, 0.04 * 8.0, 1e-4);
+}
+
 // KHR_materials_unlit: base colour only, whatever lights it (a sun, the sky, a light) and
 // whatever else the material says (emission, metal): the frame and the reference mode both
 // show the base colour exactly (1e-5), where the same material lit does not (more than 5%).

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -18,9 +19,10 @@
 
 namespace facet::test {
 
-// Empty (and a test failure) when the shader does not compile.
+// Empty (and a test failure) when the shader does not compile. `inputs` are bound from
+// binding 1 on (images the probe reads, say).
 inline std::vector<float> run_compute_probe(Context& context, std::string_view name, std::string_view source,
-                                            size_t count) {
+                                            size_t count, std::span<const DescriptorWrite> inputs = {}) {
     ShaderCompiler compiler;
     auto spirv = compiler.compile_source(ShaderStage::compute, name, source);
     if (!spirv) {
@@ -37,7 +39,8 @@ inline std::vector<float> run_compute_probe(Context& context, std::string_view n
                                      MemoryUsage::readback, "probe output"));
     must(context.submit_and_wait([&](VkCommandBuffer cmd) {
         pipeline.bind(cmd);
-        const DescriptorWrite writes[] = {DescriptorWrite::storage_buffer(out.handle())};
+        std::vector<DescriptorWrite> writes{DescriptorWrite::storage_buffer(out.handle())};
+        writes.insert(writes.end(), inputs.begin(), inputs.end());
         pipeline.push_descriptors(cmd, writes);
         vkCmdDispatch(cmd, 1, 1, 1);
         memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,

@@ -28,6 +28,8 @@ enum class TextureSlot {
     clearcoat,            // KHR_materials_clearcoat: R
     clearcoat_roughness,  // G
     clearcoat_normal,
+    specular,        // KHR_materials_specular: A
+    specular_color,  // RGB, sRGB
     count
 };
 

@@ -96,6 +96,9 @@ struct Material {
     TextureRef clearcoat_roughness_texture;  // linear: G
     TextureRef clearcoat_normal_texture;     // linear, tangent space
     float clearcoat_normal_scale = 1.0f;
+    // KHR_materials_specular's textures: A x specular_factor, RGB x specular_color.
+    TextureRef specular_texture;        // linear: A
+    TextureRef specular_color_texture;  // sRGB: RGB
 
     // The vertex tangents serve the normal maps: the surface's, else the clear coat's.
     bool has_normal_map() const { return normal_texture.valid() || clearcoat_normal_texture.valid(); }
