@@ -37,7 +37,10 @@ FinalImageTruth final_image_truth(const FinalImageViews& in, const Vec3& eye, co
         if (image.size() != count * 4)
             throw std::invalid_argument("final_image_accuracy: an image is not " + std::to_string(in.width) + " x " +
                                         std::to_string(in.height) + " RGBA");
-    const bool coated = !in.clearcoat.empty();
+    const bool coated = !in.clearcoat.empty(), filmed = !in.iridescence.empty();
+    if (filmed && in.iridescence.size() != count * 4)
+        throw std::invalid_argument("final_image_accuracy: the iridescence image is not " + std::to_string(in.width) +
+                                    " x " + std::to_string(in.height) + " RGBA");
     if (coated && (in.clearcoat.size() != count * 4 || in.clearcoat_normal.size() != count * 4))
         throw std::invalid_argument("final_image_accuracy: the clear coat's images are not " +
                                     std::to_string(in.width) + " x " + std::to_string(in.height) + " RGBA");
@@ -63,6 +66,11 @@ FinalImageTruth final_image_truth(const FinalImageViews& in, const Vec3& eye, co
             m.clearcoat_roughness = in.clearcoat[i * 4 + 1];
             m.clearcoat_normal = unit({in.clearcoat_normal[i * 4], in.clearcoat_normal[i * 4 + 1],
                                        in.clearcoat_normal[i * 4 + 2]});
+        }
+        if (filmed && in.iridescence[i * 4] > 0) {
+            m.iridescence = in.iridescence[i * 4];
+            m.iridescence_ior = in.iridescence[i * 4 + 1];
+            m.iridescence_thickness = in.iridescence[i * 4 + 2];
         }
         eligible.push_back({i, n, v, m, group_of(roughness, metallic)});
     }

@@ -73,7 +73,8 @@ Status ReferenceRenderer::set_environment(std::span<const float> rgba, uint32_t 
 Result<ReferenceStats> ReferenceRenderer::accumulate(const ReferenceSurface& surface, const FrameSettings& frame,
                                                      const ReferenceSettings& settings, const Progress& progress) try {
     if (!surface.normal || !surface.position || !surface.basecolor || !surface.metallic || !surface.roughness ||
-        !surface.f0 || !surface.emissive || !surface.clearcoat || !surface.clearcoat_normal)
+        !surface.f0 || !surface.emissive || !surface.clearcoat || !surface.clearcoat_normal ||
+        !surface.iridescence)
         return Error{"reference: every surface view is needed"};
     if (settings.batch_samples == 0 || settings.max_samples == 0)
         return Error{"reference: the sample counts must be at least 1"};
@@ -111,12 +112,14 @@ Result<ReferenceStats> ReferenceRenderer::accumulate(const ReferenceSurface& sur
     }));
 
     ReferenceStats stats;
-    // Bindings 0-6, then 12 and 13 (render/reference.comp).
+    // Bindings 0-6, then 12-14 (render/reference.comp).
     const Image* views[] = {surface.normal,   surface.position, surface.basecolor, surface.metallic, surface.roughness,
-                            surface.f0,       surface.emissive, surface.clearcoat, surface.clearcoat_normal};
+                            surface.f0,       surface.emissive, surface.clearcoat, surface.clearcoat_normal,
+                            surface.iridescence};
     const char* view_names[] = {"normal", "position", "basecolor", "metallic", "roughness",
-                                "f0",     "emissive", "clearcoat", "clearcoat normal"};
-    constexpr int kViews = 9, kFirstViewsInOrder = 7;
+                                "f0",     "emissive", "clearcoat", "clearcoat normal",
+                                "iridescence"};
+    constexpr int kViews = 10, kFirstViewsInOrder = 7;
     while (stats.samples < settings.max_samples) {
         const uint32_t count = std::min(settings.batch_samples, settings.max_samples - stats.samples);
         RenderGraph graph;

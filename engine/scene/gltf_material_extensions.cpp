@@ -102,6 +102,8 @@ void read_unlit(const tinygltf::Material& m, Material& out) {
     out.clearcoat = 0.0f;
     out.clearcoat_texture = out.clearcoat_roughness_texture = out.clearcoat_normal_texture = {};
     out.specular_texture = out.specular_color_texture = {};
+    out.iridescence = 0.0f;
+    out.iridescence_texture = out.iridescence_thickness_texture = {};
     out.emissive = glm::vec3(0.0f);
     out.emissive_texture = {};
     out.normal_texture = {};
@@ -128,6 +130,29 @@ void read_clearcoat(const tinygltf::Model& model, const tinygltf::Material& m, c
         const std::string normal = at + ".clearcoatNormalTexture";
         out.clearcoat_normal_scale = float(number(coat->Get("clearcoatNormalTexture"), "scale", 1.0, normal));
     }
+}
+
+void read_iridescence(const tinygltf::Model& model, const tinygltf::Material& m, const std::string& where,
+                      Material& out) {
+    const tinygltf::Value* film = extension(m, "KHR_materials_iridescence", where);
+    if (!film) return;
+    const std::string at = where + ": KHR_materials_iridescence";
+    const double factor = number(*film, "iridescenceFactor", 0.0, at);
+    if (factor < 0.0 || factor > 1.0) fail(at + ".iridescenceFactor " + number_text(factor) + " is outside [0, 1]");
+    const double ior = number(*film, "iridescenceIor", 1.3, at);
+    if (ior < 1.0) fail(at + ".iridescenceIor " + number_text(ior) + " is below 1 (an index of refraction)");
+    const double minimum = number(*film, "iridescenceThicknessMinimum", 100.0, at);
+    const double maximum = number(*film, "iridescenceThicknessMaximum", 400.0, at);
+    for (const auto& [name, value] : {std::pair{"iridescenceThicknessMinimum", minimum},
+                                      std::pair{"iridescenceThicknessMaximum", maximum}})
+        if (value < 0.0 || value > 1e6)
+            fail(at + "." + name + " " + number_text(value) + " is outside [0, 1e6] (nanometres)");
+    out.iridescence = float(factor);
+    out.iridescence_ior = float(ior);
+    out.iridescence_thickness_minimum = float(minimum);
+    out.iridescence_thickness_maximum = float(maximum);
+    out.iridescence_texture = texture_info(model, *film, "iridescenceTexture", at);
+    out.iridescence_thickness_texture = texture_info(model, *film, "iridescenceThicknessTexture", at);
 }
 
 void read_dielectric_extensions(const tinygltf::Model& model, const tinygltf::Material& m, const std::string& where,

@@ -33,6 +33,11 @@ void read_unlit(const tinygltf::Material& material, Material& out);
 void read_clearcoat(const tinygltf::Model& model, const tinygltf::Material& material, const std::string& where,
                     Material& out);
 
+// KHR_materials_iridescence: its factor (in [0, 1]), film ior (at least 1), thickness
+// range (0 .. 1e6 nm) and two textures (with texCoord and KHR_texture_transform).
+void read_iridescence(const tinygltf::Model& model, const tinygltf::Material& material, const std::string& where,
+                      Material& out);
+
 // KHR_materials_ior (the dielectric F0) and KHR_materials_specular: its factors and its two
 // textures (with texCoord and KHR_texture_transform, as the core textures).
 void read_dielectric_extensions(const tinygltf::Model& model, const tinygltf::Material& material,

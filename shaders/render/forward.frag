@@ -9,7 +9,8 @@
 // KHR_materials_unlit: base colour x vertex colour + emissive, which the loader clears for
 // unlit materials), CLEARCOAT (KHR_materials_clearcoat's layer) and its HAS_CLEARCOAT_MAP,
 // HAS_CLEARCOAT_ROUGHNESS_MAP, HAS_CLEARCOAT_NORMAL_MAP, HAS_SPECULAR_MAP and HAS_SPECULAR_COLOR_MAP
-// (KHR_materials_specular's textures), <SLOT>_UV (a texture's coordinates: its uv set and
+// (KHR_materials_specular's textures), FACET_IRIDESCENCE (KHR_materials_iridescence's film) and
+// its HAS_IRIDESCENCE_MAP, HAS_IRIDESCENCE_THICKNESS_MAP, <SLOT>_UV (a texture's coordinates: its uv set and
 // KHR_texture_transform) and NORMAL_TANGENT_FRAME, USE_IBL, BRDF_THESIS (the thesis' model
 // instead of glTF's), MULTISCATTER (energy compensation), DOMINANT_DIRECTION (bent specular
 // lookup), VIEW (what is written: render/views.glsl).
@@ -125,6 +126,12 @@ layout(location = 5) in vec2 in_uv1;
 #ifndef SPECULAR_COLOR_UV
 #define SPECULAR_COLOR_UV in_uv
 #endif
+#ifndef IRIDESCENCE_UV
+#define IRIDESCENCE_UV in_uv
+#endif
+#ifndef IRIDESCENCE_THICKNESS_UV
+#define IRIDESCENCE_THICKNESS_UV in_uv
+#endif
 
 layout(location = 0) out vec4 out_color;
 
@@ -219,6 +226,18 @@ Surface surface_at(MaterialData m) {
     }
 #endif
     facet_surface_clearcoat(s.shading, clamp(coat, 0.0, 1.0), clamp(coat_roughness, 0.0, 1.0), coat_n);
+#endif
+#ifdef FACET_IRIDESCENCE
+    // The film: its factor times R of its texture; its thickness the maximum, or from the
+    // minimum to the maximum by G of its thickness texture.
+    float film = m.iridescence.x, thickness = m.iridescence.w;
+#ifdef HAS_IRIDESCENCE_MAP
+    film *= texture(iridescence_map, IRIDESCENCE_UV).r;
+#endif
+#ifdef HAS_IRIDESCENCE_THICKNESS_MAP
+    thickness = mix(m.iridescence.z, m.iridescence.w, texture(iridescence_thickness_map, IRIDESCENCE_THICKNESS_UV).g);
+#endif
+    facet_surface_iridescence(s.shading, clamp(film, 0.0, 1.0), m.iridescence.y, max(thickness, 0.0));
 #endif
     return s;
 }
@@ -370,6 +389,8 @@ void main() {
     out_color = vec4(s.clearcoat, s.clearcoat_roughness, 0.0, 1.0);
 #elif VIEW == VIEW_CLEARCOAT_NORMAL
     out_color = vec4(s.clearcoat_n, 1.0);
+#elif VIEW == VIEW_IRIDESCENCE
+    out_color = vec4(s.iridescence, s.iridescence_ior, s.iridescence_thickness, 1.0);
 #elif defined(UNLIT)
     out_color = vec4(0.0, 0.0, 0.0, 1.0);  // D, F, G: no BRDF
 #else

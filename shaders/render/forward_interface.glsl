@@ -30,6 +30,7 @@ struct MaterialData {
     vec4 extra;        // alpha cutoff, specular factor, occlusion factor
     vec4 clearcoat;    // KHR_materials_clearcoat: factor, roughness, normal texture scale
     vec4 specular_color;  // KHR_materials_specular's colour (rgb)
+    vec4 iridescence;     // KHR_materials_iridescence: factor, film ior, thickness minimum, maximum (nm)
 };
 layout(binding = 3, std430) readonly buffer Materials { MaterialData materials[]; };
 
@@ -47,6 +48,8 @@ layout(binding = 14) uniform sampler2D clearcoat_roughness_map;  // G x roughnes
 layout(binding = 15) uniform sampler2D clearcoat_normal_map;     // the layer's normal, tangent space
 layout(binding = 16) uniform sampler2D specular_factor_map;      // KHR_materials_specular: A x specularFactor
 layout(binding = 17) uniform sampler2D specular_color_map;       // RGB (sRGB) x specularColorFactor
+layout(binding = 18) uniform sampler2D iridescence_map;          // KHR_materials_iridescence: R x factor
+layout(binding = 19) uniform sampler2D iridescence_thickness_map;  // G: minimum .. maximum thickness
 
 layout(push_constant) uniform Draw {
     uint instance;

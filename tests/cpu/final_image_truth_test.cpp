@@ -211,6 +211,30 @@ TEST(FinalImageTruth, ReciprocalAndTheModelsDifferWhereTheyShould) {
 
 // The thesis model against the truth tests/support/render_truth.cpp computes for the
 // builtin:spheres grid (written separately, for the forward-render tests).
+// KHR_materials_iridescence's F_iridescence: a film much thicker than the light's coherence
+// length (1e5 nm: every interference term's Gaussian envelope is 0) reflects the incoherent
+// sum of its two interfaces, R12 + T^2 R23 / (1 - R12 R23) (the Airy sum without phase),
+// with Schlick's F at each interface: outside -> film at cos1, film -> base at the refracted
+// cos2 (Snell), the base's index (1 + sqrt F0) / (1 - sqrt F0). A thin film (380 nm) differs
+// from it by its interference, and colours the reflection.
+TEST(FinalImageTruth, ThickFilmReflectsTheIncoherentSumOfItsInterfaces) {
+    auto schlick = [](double r0, double c) { return r0 + (1 - r0) * std::pow(1 - c, 5); };
+    const double film = 1.8;
+    for (double cos1 : {1.0, 0.7, 0.3})
+        for (double base_f0 : {0.04, 0.5}) {
+            const double cos2 = std::sqrt(1 - (1 - cos1 * cos1) / (film * film));
+            const double base_ior = (1 + std::sqrt(base_f0)) / (1 - std::sqrt(base_f0));
+            const double R12 = schlick(std::pow((film - 1) / (film + 1), 2), cos1);
+            const double R23 = schlick(std::pow((base_ior - film) / (base_ior + film), 2), cos2);
+            const double incoherent = R12 + (1 - R12) * (1 - R12) * R23 / (1 - R12 * R23);
+            const Vec3 thick = thin_film_fresnel(1.0, film, cos1, 1e5, {base_f0, base_f0, base_f0});
+            for (double c : thick) EXPECT_NEAR(c, incoherent, 1e-9) << cos1 << " " << base_f0;
+            const Vec3 thin = thin_film_fresnel(1.0, film, cos1, 380.0, {base_f0, base_f0, base_f0});
+            EXPECT_GT(std::abs(thin[0] - incoherent) + std::abs(thin[2] - incoherent), 0.01) << cos1 << " " << base_f0;
+            EXPECT_GT(std::abs(thin[0] - thin[2]), 0.005) << "a thin film colours the reflection";
+        }
+}
+
 TEST(FinalImageTruth, ThesisMatchesTheSpheresTruth) {
     const Equirect env = sun_sky(128, 64, 200.0, 4.0, 35.0, 60.0);
     const TexelLights lights = texel_lights(env);

@@ -26,7 +26,8 @@ struct TempDir : test::GltfTempDir {
 // One triangle whose material 0 has `extensions` (a JSON object's members).
 Result<Scene> load_material(const TempDir& dir, const std::string& extensions) {
     const std::string text = R"({"asset": {"version": "2.0"},
-  "extensionsUsed": ["KHR_materials_ior", "KHR_materials_specular", "KHR_materials_unlit", "KHR_materials_clearcoat"],
+  "extensionsUsed": ["KHR_materials_ior", "KHR_materials_specular", "KHR_materials_unlit", "KHR_materials_clearcoat",
+                     "KHR_materials_iridescence"],
   "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
   "bufferViews": [{"buffer": 0, "byteLength": 36}],
   "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}],
@@ -114,6 +115,33 @@ TEST(GltfMaterialExtensions, ClearcoatReadsItsFactors) {
     EXPECT_EQ(unlit->materials[0].clearcoat, 0.0f);
 }
 
+// KHR_materials_iridescence's defaults (factor 0: no film; ior 1.3; 100 .. 400 nm) and values.
+TEST(GltfMaterialExtensions, IridescenceReadsItsFactors) {
+    TempDir dir;
+    const Result<Scene> absent = load_material(dir, R"("KHR_materials_iridescence": {})");
+    ASSERT_TRUE(absent.ok()) << absent.error().message;
+    const Material& none = absent->materials[0];
+    EXPECT_EQ(none.iridescence, 0.0f);
+    EXPECT_EQ(none.iridescence_ior, 1.3f);
+    EXPECT_EQ(none.iridescence_thickness_minimum, 100.0f);
+    EXPECT_EQ(none.iridescence_thickness_maximum, 400.0f);
+    const Result<Scene> film = load_material(dir, R"("KHR_materials_iridescence": {"iridescenceFactor": 0.7,
+        "iridescenceIor": 1.8, "iridescenceThicknessMinimum": 200, "iridescenceThicknessMaximum": 1200})");
+    ASSERT_TRUE(film.ok()) << film.error().message;
+    const Material& m = film->materials[0];
+    EXPECT_EQ(m.iridescence, 0.7f);
+    EXPECT_EQ(m.iridescence_ior, 1.8f);
+    EXPECT_EQ(m.iridescence_thickness_minimum, 200.0f);
+    EXPECT_EQ(m.iridescence_thickness_maximum, 1200.0f);
+    EXPECT_FALSE(m.iridescence_texture.valid());
+    EXPECT_TRUE(film->warnings.empty());
+    // The extension excludes unlit: an unlit surface has no film.
+    const Result<Scene> unlit =
+        load_material(dir, R"("KHR_materials_iridescence": {"iridescenceFactor": 1}, "KHR_materials_unlit": {})");
+    ASSERT_TRUE(unlit.ok()) << unlit.error().message;
+    EXPECT_EQ(unlit->materials[0].iridescence, 0.0f);
+}
+
 TEST(GltfMaterialExtensions, InvalidValuesAreErrorsNamingTheMaterial) {
     TempDir dir;
     const std::string file = (dir.path / "model.gltf").string();
@@ -133,6 +161,16 @@ TEST(GltfMaterialExtensions, InvalidValuesAreErrorsNamingTheMaterial) {
          "material 'glass': KHR_materials_specular: specularTexture texture 0 out of range (0 textures)"},
         {R"("KHR_materials_specular": {"specularColorTexture": [0]})",
          "material 'glass': KHR_materials_specular.specularColorTexture must be an object"},
+        {R"("KHR_materials_iridescence": {"iridescenceFactor": 1.5})",
+         "material 'glass': KHR_materials_iridescence.iridescenceFactor 1.5 is outside [0, 1]"},
+        {R"("KHR_materials_iridescence": {"iridescenceIor": 0.5})",
+         "material 'glass': KHR_materials_iridescence.iridescenceIor 0.5 is below 1 (an index of refraction)"},
+        {R"("KHR_materials_iridescence": {"iridescenceThicknessMaximum": -5})",
+         "material 'glass': KHR_materials_iridescence.iridescenceThicknessMaximum -5 is outside [0, 1e6] (nanometres)"},
+        {R"("KHR_materials_iridescence": {"iridescenceThicknessMinimum": "thin"})",
+         "material 'glass': KHR_materials_iridescence.iridescenceThicknessMinimum must be a finite number"},
+        {R"("KHR_materials_iridescence": {"iridescenceTexture": {"index": 2}})",
+         "material 'glass': KHR_materials_iridescence: iridescenceTexture texture 2 out of range (0 textures)"},
         {R"("KHR_materials_clearcoat": {"clearcoatFactor": 2})",
          "material 'glass': KHR_materials_clearcoat.clearcoatFactor 2 is outside [0, 1]"},
         {R"("KHR_materials_clearcoat": {"clearcoatRoughnessFactor": -0.5})",

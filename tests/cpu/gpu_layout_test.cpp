@@ -27,10 +27,11 @@ namespace {
 // the C++ layout is the GLSL one with no padding.
 static_assert(sizeof(GpuInstance) == 128);
 static_assert(offsetof(GpuInstance, world) == 0 && offsetof(GpuInstance, normal_matrix) == 64);
-static_assert(sizeof(GpuMaterial) == 96);
+static_assert(sizeof(GpuMaterial) == 112);
 static_assert(offsetof(GpuMaterial, base_color) == 0 && offsetof(GpuMaterial, emissive_f0) == 16 &&
               offsetof(GpuMaterial, factors) == 32 && offsetof(GpuMaterial, extra) == 48 &&
-              offsetof(GpuMaterial, clearcoat) == 64 && offsetof(GpuMaterial, specular_color) == 80);
+              offsetof(GpuMaterial, clearcoat) == 64 && offsetof(GpuMaterial, specular_color) == 80 &&
+              offsetof(GpuMaterial, iridescence) == 96);
 
 std::vector<uint32_t> compile(ShaderStage stage, const char* name, std::vector<ShaderDefine> defines = {}) {
     ShaderCompiler compiler;
@@ -82,7 +83,8 @@ TEST(GpuLayout, MaterialDataMatchesGpuMaterial) {
                    {"factors", offsetof(GpuMaterial, factors)},
                    {"extra", offsetof(GpuMaterial, extra)},
                    {"clearcoat", offsetof(GpuMaterial, clearcoat)},
-                   {"specular_color", offsetof(GpuMaterial, specular_color)}});
+                   {"specular_color", offsetof(GpuMaterial, specular_color)},
+                   {"iridescence", offsetof(GpuMaterial, iridescence)}});
 }
 
 // The forward pass, the reference pass and the skybox read one packed light

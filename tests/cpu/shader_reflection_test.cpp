@@ -115,7 +115,9 @@ TEST(ShaderReflection, ForwardVertexAndFragmentMergeIntoOneLayout) {
                      {14, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                      {15, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                      {16, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},   // KHR_materials_specular's two
-                     {17, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
+                     {17, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                     {18, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},   // KHR_materials_iridescence's two
+                     {19, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
                     "forward");
     EXPECT_EQ(merged->push_constant_bytes, 8u);  // uint instance, uint material
 }

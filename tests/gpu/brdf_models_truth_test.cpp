@@ -347,5 +347,88 @@ TEST(BrdfModelsTruth, ColouredSpecularMatchesTheTruthUnderALightAndTheEnvironmen
     EXPECT_EQ(context.validation_message_count(), messages);
 }
 
+// KHR_materials_iridescence: a film of index 1.8 and 380 nm at weight 0.9 on every sphere, both
+// models: the views report it; a directional light pixel by pixel against the truth with the
+// film (F_iridescence at each pixel's v.h, written in double precision from the extension's
+// equations); the sun sky per group (the default shading, whose split sum takes the film's
+// F at n.v, and the reference mode) against the same truth.
+TEST(BrdfModelsTruth, IridescentFilmMatchesTheTruthUnderALightAndTheEnvironment) {
+    Context& context = test::gpu();
+    const uint32_t messages = context.validation_message_count();
+    auto film = [](Material& m) {
+        m.iridescence = 0.9f;
+        m.iridescence_ior = 1.8f;
+        m.iridescence_thickness_maximum = 380.0f;
+    };
+    auto truth_film = [](test::TruthMaterial& m) {
+        m.iridescence = 0.9;
+        m.iridescence_ior = 1.8;
+        m.iridescence_thickness = 380.0;
+    };
+    std::vector<View> views = kViews;
+    views.push_back(View::iridescence);
+    auto film_views = [](const RenderedImages& images, const std::vector<float>& hdr) {
+        test::FinalImageViews v = views_of(images, hdr);
+        v.iridescence = images.views.at(5).second;
+        return v;
+    };
+    SunSkyFile sky;
+    const test::TexelLights texels = test::texel_lights(sky.env);
+    for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis}) {
+        RenderJob job = spheres_job(model, "none");
+        job.frame.views = views;
+        const Light light = directional_light();
+        job.extra_lights = {light};
+        auto session = spheres_with(context, job, film);
+        ASSERT_TRUE(session) << session.error().message;
+        auto frame = (*session)->render_frame();
+        ASSERT_TRUE(frame) << frame.error().message;
+        const test::FinalImageViews v = film_views(*frame, frame->hdr);
+        for (size_t p = 0; p < size_t(v.width) * v.height; ++p) {
+            if (v.normal[p * 4 + 3] < 1.0f) continue;
+            ASSERT_FLOAT_EQ(v.iridescence[p * 4], 0.9f) << p;
+            ASSERT_FLOAT_EQ(v.iridescence[p * 4 + 1], 1.8f) << p;
+            ASSERT_FLOAT_EQ(v.iridescence[p * 4 + 2], 380.0f) << p;
+        }
+        const DirectionalCheck c = check_directional(v, (*session)->camera().position, light, model, truth_film);
+        std::printf("%s model, iridescent film, one directional light: %d pixels, worst relative error %.2e (the "
+                    "film-less truth: %.2f)\n", brdf_model_name(model), c.checked, c.worst, c.worst_without_layer);
+        EXPECT_GT(c.checked, 1000);
+        EXPECT_LT(c.worst, 2e-3) << brdf_model_name(model);
+        EXPECT_GT(c.worst_without_layer, 0.1) << "the film changes the image";
+
+        RenderJob env_job = spheres_job(model, sky.path);
+        env_job.frame.views = views;
+        auto env_session = spheres_with(context, env_job, film);
+        ASSERT_TRUE(env_session) << env_session.error().message;
+        auto env_frame = (*env_session)->render_frame();
+        ASSERT_TRUE(env_frame) << env_frame.error().message;
+        test::AccuracySettings settings;
+        settings.max_pixels = 1000;
+        const glm::vec3 e = (*env_session)->camera().position;
+        const test::FinalImageTruth truth = test::final_image_truth(film_views(*env_frame, env_frame->hdr),
+                                                                    {e.x, e.y, e.z}, texels, model, settings);
+        std::vector<std::tuple<const char*, const std::vector<float>*, double>> measured = {
+            {"default shading", &env_frame->hdr, 0.06}};
+        Result<RenderedImages> reference = Error{"not rendered"};
+        if (model == BrdfModel::gltf) {
+            ReferenceSettings rs;
+            rs.min_samples = rs.max_samples = 256;
+            rs.noise_target = 0;
+            reference = (*env_session)->render_reference(rs);
+            ASSERT_TRUE(reference) << reference.error().message;
+            measured.push_back({"reference 256 spp", &reference->hdr, 0.03});
+        }
+        for (const auto& [what, hdr, bound] : measured) {
+            const test::FinalImageAccuracy a = test::final_image_accuracy(truth, *hdr);
+            std::printf("iridescent film, %s model, %s:\n%s", brdf_model_name(model), what,
+                        test::format_accuracy_table(a).c_str());
+            EXPECT_GT(a.pixels, 700u);
+            for (const test::GroupError& g : a.groups) EXPECT_LT(g.mean_rel, bound) << what << ": " << test::group_name(g);
+        }
+    }
+    EXPECT_EQ(context.validation_message_count(), messages);
+}
+
 }  // namespace
 }  // namespace facet

@@ -5,13 +5,17 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include <facet/gpu/pipeline.h>
 #include <facet/gpu/resources.h>
 #include <facet/gpu/transfer.h>
 #include <facet/shader/compiler.h>
+#include <facet/reference/final_image_truth.h>
+#include "support/compute_probe.h"
 #include "support/gpu_test.h"
 
 namespace facet {
@@ -148,6 +152,51 @@ TEST_F(BrdfTest, FiniteAtRoughnessZeroAndGrazingAngles) {
         }
     }
     EXPECT_EQ(out[1].G_ibl, 0.0f) << "no light at a grazing view";
+}
+
+// KHR_materials_iridescence's F_iridescence in shading.glsl (float) against the truth's
+// double-precision thin_film_fresnel, written separately from the extension's equations:
+// dielectric and metallic bases (a base whose index is below the film's in some channels
+// and not others shifts those channels' phase), air and a clear coat outside, thin, thick
+// and vanishing films, and total internal reflection (film less dense than the coat).
+TEST_F(BrdfTest, IridescenceFresnelIsTheTruths) {
+    struct Case {
+        float outside, film, cos1, thickness;
+        float base[3];
+    };
+    const Case cases[] = {{1.0f, 1.3f, 1.0f, 400.0f, {0.04f, 0.04f, 0.04f}},
+                          {1.0f, 1.8f, 0.6f, 380.0f, {0.04f, 0.04f, 0.04f}},
+                          {1.0f, 1.8f, 0.2f, 900.0f, {0.95f, 0.64f, 0.54f}},  // copper-like: mixed phases
+                          {1.0f, 2.2f, 0.8f, 150.0f, {0.91f, 0.92f, 0.92f}},
+                          {1.5f, 1.3f, 0.9f, 250.0f, {0.04f, 0.1f, 0.3f}},
+                          {1.0f, 1.8f, 0.5f, 12.0f, {0.04f, 0.04f, 0.04f}},     // fading into the outside
+                          {1.5f, 1.2f, 0.1f, 400.0f, {0.04f, 0.04f, 0.04f}}};  // total internal reflection
+    std::string source = R"(#version 460
+#include "facet/shading.glsl"
+layout(local_size_x = 1) in;
+layout(std430, binding = 0) writeonly buffer Out { float values[]; };
+void main() {
+)";
+    for (size_t i = 0; i < std::size(cases); ++i) {
+        const Case& c = cases[i];
+        char line[256];
+        std::snprintf(line, sizeof line,
+                      "    { vec3 f = facet_iridescence_fresnel(%.9g, %.9g, %.9g, %.9g, vec3(%.9g, %.9g, %.9g));\n"
+                      "      values[%zu] = f.r; values[%zu] = f.g; values[%zu] = f.b; }\n",
+                      c.outside, c.film, c.cos1, c.thickness, c.base[0], c.base[1], c.base[2], 3 * i, 3 * i + 1, 3 * i + 2);
+        source += line;
+    }
+    source += "}\n";
+    const std::vector<float> values = test::run_compute_probe(ctx(), "iridescence_probe.comp", source, 3 * std::size(cases));
+    ASSERT_EQ(values.size(), 3 * std::size(cases));
+    for (size_t i = 0; i < std::size(cases); ++i) {
+        const Case& c = cases[i];
+        const test::Vec3 want = test::thin_film_fresnel(c.outside, c.film, c.cos1, c.thickness,
+                                                        {c.base[0], c.base[1], c.base[2]});
+        for (size_t k = 0; k < 3; ++k) EXPECT_NEAR(values[3 * i + k], want[k], 2e-4) << "case " << i << " channel " << k;
+    }
+    // The total internal reflection case reflects everything.
+    for (size_t k = 0; k < 3; ++k) EXPECT_EQ(values[3 * (std::size(cases) - 1) + k], 1.0f);
 }
 
 }  // namespace

@@ -271,6 +271,40 @@ TEST_F(GltfFeaturesTest, SpecularTexturesReachTheDielectricLobe) {
     EXPECT_NEAR(right.b, 0.04 * 8.0, 1e-4);
 }
 
+// KHR_materials_iridescence's textures: the film's weight is iridescenceFactor x R of
+// iridescenceTexture and its thickness mix(minimum, maximum, G of iridescenceThicknessTexture),
+// per pixel, as the view the reference mode reads reports (the thickness texture through
+// texCoord 0 and KHR_texture_transform shifted by half: its texels swap sides).
+TEST_F(GltfFeaturesTest, IridescenceTexturesReachTheFilm) {
+    const unsigned char texels[] = {51, 0, 0, 255, 255, 255, 0, 255};  // (R, G): (0.2, 0) | (1, 1)
+    ASSERT_TRUE(write_png(dir.file("film.png"), 2, 1, texels));
+    GltfBuilder b = lit_quad_builder();
+    const std::string members =
+        mesh_file(R"("POSITION": 0, "TEXCOORD_0": 2, "NORMAL": 3)", 1,
+                  R"({"pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0.5},
+                      "extensions": {"KHR_materials_iridescence": {"iridescenceFactor": 0.5, "iridescenceIor": 1.6,
+                        "iridescenceThicknessMinimum": 200, "iridescenceThicknessMaximum": 800,
+                        "iridescenceTexture": {"index": 0},
+                        "iridescenceThicknessTexture": {"index": 0, "texCoord": 0,
+                          "extensions": {"KHR_texture_transform": {"offset": [0.5, 0]}}}}}})") +
+        R"(, "textures": [{"source": 0, "sampler": 0}],
+  "images": [{"uri": "film.png"}], "samplers": [{"magFilter": 9728, "minFilter": 9728}],
+  "extensionsUsed": ["KHR_materials_iridescence", "KHR_texture_transform"])";
+    RenderJob views = job("builtin:white");
+    views.frame.views = {View::iridescence};
+    const RenderedImages images = render(b.write(dir, "film_textures", members), views, false);
+    ASSERT_EQ(images.views.size(), 1u);
+    const Pixel left = at(images.views[0].second, kSize / 2 - 8, kSize / 2);
+    const Pixel right = at(images.views[0].second, kSize / 2 + 8, kSize / 2);
+    // Left: R 0.2 of its own texel, G 1 of the other (shifted): 800 nm.
+    EXPECT_NEAR(left.r, 0.5f * 51.0f / 255.0f, 1e-4f);
+    EXPECT_NEAR(left.g, 1.6f, 1e-6f);
+    EXPECT_NEAR(left.b, 800.0f, 1e-3f);
+    // Right: R 1, G 0 of the left texel: 200 nm.
+    EXPECT_NEAR(right.r, 0.5f, 1e-4f);
+    EXPECT_NEAR(right.b, 200.0f, 1e-3f);
+}
+
 // KHR_materials_unlit: base colour only, whatever lights it (a sun, the sky, a light) and
 // whatever else the material says (emission, metal): the frame and the reference mode both
 // show the base colour exactly (1e-5), where the same material lit does not (more than 5%).

@@ -25,6 +25,7 @@ struct FinalImageViews {
     uint32_t width = 0, height = 0;
     std::span<const float> hdr, normal, position, basecolor, metallic, roughness;
     std::span<const float> clearcoat, clearcoat_normal;
+    std::span<const float> iridescence;  // View::iridescence: weight, film ior, thickness (empty: no film)
 };
 
 struct AccuracySettings {

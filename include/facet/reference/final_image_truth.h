@@ -21,7 +21,19 @@ struct TruthMaterial {
     // roughness and unit normal (zero: the surface's normal).
     double clearcoat = 0, clearcoat_roughness = 0;
     Vec3 clearcoat_normal{0, 0, 0};
+    // KHR_materials_iridescence: a thin film of weight `iridescence`, index iridescence_ior
+    // and thickness in nanometres over the surface (under a clear coat, whose index 1.5 is
+    // then the film's outside).
+    double iridescence = 0, iridescence_ior = 1.3, iridescence_thickness = 0;
 };
+
+// The extension's F_iridescence (Belcour and Barla 2017 as KHR_materials_iridescence defines
+// it): the reflectance of a film of index film_ior and thickness_nm between a medium of
+// index outside_ior and a base of normal-incidence reflectance base_f0 (per channel, its
+// index (1 + sqrt F0) / (1 - sqrt F0)), light at cos1 to the microfacet; Schlick's F at both
+// interfaces, two orders of interference integrated against Gaussian fits of the CIE 1931
+// matching functions, linear Rec. 709.
+Vec3 thin_film_fresnel(double outside_ior, double film_ior, double cos1, double thickness_nm, const Vec3& base_f0);
 
 // f(l, v) (n.l) for unit n, v (towards the eye) and l (towards the light); zero when l is
 // below the surface. `punctual` picks the thesis' k = (r+1)^2/8 instead of the
@@ -33,6 +45,8 @@ struct TruthMaterial {
 //  thesis: F0 = mix(that F0, albedo, metallic), F = w' Schlick(F0, v.h) with
 //          w' = mix(specular_weight, 1, metallic), kd = (1 - F)(1 - metallic),
 //          f = kd albedo/pi + F D G / (4 n.l n.v), G Smith with Schlick-GGX.
+//  iridescence (both models): each Schlick F above (glTF: Fd and the metal's; thesis: F)
+//          mixed with thin_film_fresnel(outside, ior, v.h, thickness, its F0) by the weight.
 //  clearcoat (both models, the extension's layering): f (1 - c Fc(v.h)) (n.l) + c Fc(v.h)
 //          D V of the model's specular lobe at the layer's roughness (n_c.l), Fc =
 //          Schlick(0.04, v.h), zero where l is below both n and the layer's normal n_c.

@@ -30,6 +30,8 @@ enum class TextureSlot {
     clearcoat_normal,
     specular,        // KHR_materials_specular: A
     specular_color,  // RGB, sRGB
+    iridescence,            // KHR_materials_iridescence: R
+    iridescence_thickness,  // G
     count
 };
 
@@ -45,6 +47,7 @@ struct GpuMaterial {
     glm::vec4 extra;
     glm::vec4 clearcoat;  // KHR_materials_clearcoat: factor, roughness, normal texture scale
     glm::vec4 specular_color;  // KHR_materials_specular's colour (rgb)
+    glm::vec4 iridescence;     // KHR_materials_iridescence: factor, film ior, thickness minimum, maximum (nm)
 };
 
 struct GpuTexture {

@@ -38,6 +38,7 @@ struct ReferenceSurface {
     const Image* emissive = nullptr;
     const Image* clearcoat = nullptr;         // View::clearcoat: weight, roughness
     const Image* clearcoat_normal = nullptr;  // View::clearcoat_normal
+    const Image* iridescence = nullptr;       // View::iridescence: weight, film ior, thickness (nm)
 };
 
 struct ReferenceStats {

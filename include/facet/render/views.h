@@ -27,6 +27,7 @@ enum class View : int {
     specular_f0 = 15, // F0 (rgb) and the specular weight (a), for the reference renderer
     clearcoat = 16,   // KHR_materials_clearcoat's weight (r) and roughness (g)
     clearcoat_normal = 17,  // the clear coat's unit normal, world space
+    iridescence = 18,       // KHR_materials_iridescence's weight (r), film ior (g), thickness in nm (b)
 };
 
 const char* view_name(View view);

@@ -99,6 +99,15 @@ struct Material {
     // KHR_materials_specular's textures: A x specular_factor, RGB x specular_color.
     TextureRef specular_texture;        // linear: A
     TextureRef specular_color_texture;  // sRGB: RGB
+    // KHR_materials_iridescence: a thin dielectric film of weight `iridescence` (0: none),
+    // index iridescence_ior and thickness iridescence_thickness_maximum nm, or from the
+    // minimum to the maximum by the thickness texture's G; its weight x the texture's R.
+    float iridescence = 0.0f;
+    float iridescence_ior = 1.3f;
+    float iridescence_thickness_minimum = 100.0f;
+    float iridescence_thickness_maximum = 400.0f;
+    TextureRef iridescence_texture;            // linear: R
+    TextureRef iridescence_thickness_texture;  // linear: G
 
     // The vertex tangents serve the normal maps: the surface's, else the clear coat's.
     bool has_normal_map() const { return normal_texture.valid() || clearcoat_normal_texture.valid(); }
