@@ -45,8 +45,7 @@ uint32_t bytes_per_texel(VkFormat format) {
         case VK_FORMAT_X8_D24_UNORM_PACK32: return 4;
         case VK_FORMAT_R16G16B16A16_SFLOAT:
         case VK_FORMAT_R32G32_SFLOAT: return 8;
-        case VK_FORMAT_R32G32B32A32_SFLOAT:
-        case VK_FORMAT_R32G32B32A32_UINT: return 16;
+        case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
         default:
             throw UsageError("bytes_per_texel: unsupported VkFormat " +
                              std::to_string(static_cast<int>(format)));

@@ -73,13 +73,12 @@ ForwardRenderer::ForwardRenderer(Context& context, ProgramCache& programs, uint3
       lut_sampler_(or_throw(Sampler::create(context, clamped_linear(), "brdf lut sampler"))) {
     if (frames_in_flight == 0) throw UsageError("ForwardRenderer: frames_in_flight must be at least 1");
     ImageDesc table;
-    table.format = VK_FORMAT_R32G32B32A32_UINT;
     table.width = kSpecularLobeTableWidth;
     table.height = kSpecularLobeTableHeight;
     lobe_table_ = or_throw(Image::create(context, table, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                                          "specular lobe table"));
-    const std::vector<uint32_t> texels = specular_lobe_table_texels();
-    or_throw(upload_image(context, lobe_table_, 0, 0, std::as_bytes(std::span<const uint32_t>(texels)),
+    const std::vector<float> texels = specular_lobe_table_texels();
+    or_throw(upload_image(context, lobe_table_, 0, 0, std::as_bytes(std::span<const float>(texels)),
                           VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
     lobe_table_view_ = or_throw(lobe_table_.view());
     slots_.resize(frames_in_flight);
@@ -358,7 +357,7 @@ ForwardOutputs ForwardRenderer::add_draw_pass(RenderGraph& graph, const std::str
                 tex(TextureSlot::normal),
                 tex(TextureSlot::occlusion),
                 tex(TextureSlot::emissive),
-                DescriptorWrite::sampled_image(lobe_table_view_, nearest_.handle()),
+                DescriptorWrite::sampled_image(lobe_table_view_, lut_sampler_.handle()),
                 tex(TextureSlot::clearcoat),
                 tex(TextureSlot::clearcoat_roughness),
                 tex(TextureSlot::clearcoat_normal),

@@ -532,20 +532,17 @@ struct FacetSpecularLookups {
     float weight[3];
 };
 
-// The fitted table's entry nearest to table coordinates x (n.v) and y (roughness), each in
-// [0, 8] (include/facet/render/specular_lobes.h: steps + 1 entries per axis, eight halves
-// each): (t0, t1, t2, w0) and (r0, r1, r2, w1). One unfiltered fetch.
-void facet_lobe_entries(usampler2D lobe_table, uint brdf, float x, float y, out vec4 directions, out vec4 widths) {
-    const float per_unit = facet_specular_lobe_table_steps / 8.0;
-    ivec2 entry = ivec2(int(x * per_unit + 0.5), int(y * per_unit + 0.5));
-    entry.y += int(brdf) * (int(facet_specular_lobe_table_steps) + 1);
-    uvec4 texel = texelFetch(lobe_table, entry, 0);
-    directions = vec4(unpackHalf2x16(texel.x), unpackHalf2x16(texel.y));
-    widths = vec4(unpackHalf2x16(texel.z), unpackHalf2x16(texel.w));
+// The fitted table's two texels at table coordinates x (n.v column) and y (roughness row),
+// each in [0, 8], interpolated linearly by the sampler (include/facet/render/specular_lobes.h):
+// (t0, t1, t2, w0) and (r0, r1, r2, w1).
+void facet_lobe_entries(sampler2D lobe_table, uint brdf, float x, float y, out vec4 directions, out vec4 widths) {
+    float v = (float(brdf) * 9.0 + 0.5 + y) / 18.0;
+    directions = textureLod(lobe_table, vec2((0.5 + x) / 18.0, v), 0.0);
+    widths = textureLod(lobe_table, vec2((9.5 + x) / 18.0, v), 0.0);
 }
 
 FacetSpecularLookups facet_specular_lookups(FacetSurface s, vec3 v, float NdotV, float specular_levels,
-                                              usampler2D lobe_table, bool fitted) {
+                                              sampler2D lobe_table, bool fitted) {
     FacetSpecularLookups k;
     vec3 R = reflect(-v, s.n);
     float lod = facet_specular_lod(s.roughness, specular_levels);
@@ -663,7 +660,7 @@ void facet_environment_clearcoat(FacetSurface s, vec3 v, vec4 lut, sampler2D lut
 // fitted ones read from lobe_table when `fitted`.
 FacetEnvironmentLight facet_environment_light(FacetSurface s, vec3 v, float NdotV, vec4 lut, samplerCube irradiance_map,
                                               samplerCube specular_map, float specular_levels, float intensity,
-                                              bool multiscatter, usampler2D lobe_table, bool fitted) {
+                                              bool multiscatter, sampler2D lobe_table, bool fitted) {
     return facet_environment_light(s, v, NdotV, lut, irradiance_map, specular_map, intensity, multiscatter,
                                    facet_specular_lookups(s, v, NdotV, specular_levels, lobe_table, fitted));
 }

@@ -110,7 +110,7 @@ TEST(ShaderReflection, ForwardVertexAndFragmentMergeIntoOneLayout) {
                      {9, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                      {10, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                      {11, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                     {12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},   // the fitted lookups' table (usampler2D)
+                     {12, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},   // the fitted lookups' table
                      {13, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},   // the clear coat's three textures
                      {14, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                      {15, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},

@@ -65,9 +65,8 @@ double l1(const std::vector<double>& a, const std::vector<double>& b) {
 }
 
 TEST(SpecularLobes, FittedLookupsFollowTheTrueLobeBetterThanOneAlongR) {
-    const std::vector<uint32_t> table = specular_lobe_table_texels();
+    const std::vector<float> table = specular_lobe_table_texels();
     ASSERT_EQ(table.size(), size_t(kSpecularLobeTableWidth) * kSpecularLobeTableHeight * 4);
-    const uint32_t per_entry = kSpecularLobeTableSteps / 8;  // the fit's entries are every 8th texel
     for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis})
         for (int row : {1, 3, 5, 8})          // roughness 0.3, 0.5, 0.7, 1.0
             for (int column : {1, 4, 7}) {    // n.v 0.2, 0.5, 0.8
@@ -86,10 +85,12 @@ TEST(SpecularLobes, FittedLookupsFollowTheTrueLobeBetterThanOneAlongR) {
                 for (double& x : lobe) x /= sum;
                 std::vector<double> fitted(lobe.size(), 0.0);
                 double weights = 0;
-                const SpecularLobeEntry e = specular_lobe_table_entry(table, model == BrdfModel::gltf ? 0 : 1,
-                                                                      uint32_t(column) * per_entry, uint32_t(row) * per_entry);
+                const size_t y = size_t(model == BrdfModel::gltf ? 0 : 9) + size_t(row);
+                const float* directions = &table[(y * kSpecularLobeTableWidth + size_t(column)) * 4];
+                const float* widths = &table[(y * kSpecularLobeTableWidth + 9 + size_t(column)) * 4];
                 for (int k = 0; k < 3; ++k) {
-                    const double t = e.t[k], r = e.r[k], w = e.w[k];
+                    const double t = directions[k], r = widths[k];
+                    const double w = k == 0 ? directions[3] : k == 1 ? widths[3] : 1.0 - directions[3] - widths[3];
                     EXPECT_GE(w, 0.0);
                     EXPECT_GT(r, 0.0);
                     EXPECT_LE(r, 1.0);

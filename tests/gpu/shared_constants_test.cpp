@@ -9,10 +9,7 @@
 #include <numbers>
 
 #include <facet/core/shared_constants.h>
-#include <facet/gpu/transfer.h>
-#include <facet/render/specular_lobes.h>
 #include "io/equirect.h"
-#include "render/specular_lobes_table.h"
 #include "support/compute_probe.h"
 #include "support/gpu_test.h"
 
@@ -103,67 +100,6 @@ void main() {
         const double omega = equirect_texel_solid_angle(rows[i], 64, 32);
         EXPECT_NEAR(values[20 + i], omega, 1e-5 * omega) << "solid angle of row " << rows[i];
     }
-}
-
-// The fitted lookups' table is written by C++ (render/specular_lobes.h) and read by
-// shading.glsl's facet_lobe_entries: at table coordinates between the fit's 9 x 9 entries the
-// shader reads the nearest of the table's texels, which holds the fit's entries interpolated
-// bilinearly (computed here from the fit's own numbers) to half precision, for both models.
-TEST_F(SharedConstantsTest, LobeTableReadsTheFitInterpolated) {
-    const char* source = R"(#version 460
-#include "facet/shading.glsl"
-layout(local_size_x = 1) in;
-layout(std430, binding = 0) writeonly buffer Out { float values[]; };
-layout(binding = 1) uniform usampler2D lobes;
-const vec2 at[4] = vec2[](vec2(0.0, 0.0), vec2(3.5, 2.25), vec2(8.0, 8.0), vec2(6.125, 0.875));
-void main() {
-    for (uint model = 0u; model < 2u; ++model)
-        for (int i = 0; i < 4; ++i) {
-            vec4 d, w;
-            facet_lobe_entries(lobes, model, at[i].x, at[i].y, d, w);
-            for (int c = 0; c < 4; ++c) {
-                values[(model * 4u + uint(i)) * 8u + uint(c)] = d[c];
-                values[(model * 4u + uint(i)) * 8u + 4u + uint(c)] = w[c];
-            }
-        }
-}
-)";
-    ImageDesc desc;
-    desc.format = VK_FORMAT_R32G32B32A32_UINT;
-    desc.width = kSpecularLobeTableWidth;
-    desc.height = kSpecularLobeTableHeight;
-    Image table = test::must(Image::create(ctx(), desc, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "lobes"));
-    const std::vector<uint32_t> texels = specular_lobe_table_texels();
-    test::must(upload_image(ctx(), table, 0, 0, std::as_bytes(std::span<const uint32_t>(texels)), VK_IMAGE_LAYOUT_UNDEFINED,
-                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
-    const VkImageView view = test::must(table.view());
-    Sampler sampler = test::must(Sampler::create(ctx(), VK_FILTER_NEAREST, false, false, "lobes sampler"));
-    const DescriptorWrite inputs[] = {DescriptorWrite::sampled_image(view, sampler.handle())};
-    auto values = test::run_compute_probe(ctx(), "lobe_table_probe.comp", source, 64, inputs);
-    ASSERT_EQ(values.size(), 64u);
-    // The fit's eight numbers at (model, row, column), as the table defines them.
-    auto fit = [](int model, int row, int column, int k) {
-        const int entry = ((model * kSpecularLobeRows + row) * kSpecularLobeColumns + column) * 3;
-        const double theta = std::acos(0.1 * (column + 1));
-        if (k == 3 || k == 7) return double(kSpecularLobeEntries[entry + (k == 3 ? 0 : 1)][2]);
-        const double s = kSpecularLobeEntries[entry + k % 4][0];
-        if (k >= 4) return double(kSpecularLobeEntries[entry + k % 4][1]);
-        return std::sin(s * theta) / (std::sin(s * theta) + std::sin((1 - s) * theta));
-    };
-    const double at[4][2] = {{0.0, 0.0}, {3.5, 2.25}, {8.0, 8.0}, {6.125, 0.875}};
-    for (int model = 0; model < 2; ++model)
-        for (int i = 0; i < 4; ++i) {
-            // Every point above lies on a texel of the 64-step table: the nearest is exact.
-            const double x = at[i][0], y = at[i][1];
-            const int x0 = std::min(int(x), 7), y0 = std::min(int(y), 7);
-            const double fx = x - x0, fy = y - y0;
-            for (int k = 0; k < 8; ++k) {
-                const double expected = (1 - fy) * ((1 - fx) * fit(model, y0, x0, k) + fx * fit(model, y0, x0 + 1, k)) +
-                                        fy * ((1 - fx) * fit(model, y0 + 1, x0, k) + fx * fit(model, y0 + 1, x0 + 1, k));
-                EXPECT_NEAR(values[size_t((model * 4 + i) * 8 + k)], expected, 2e-3 * std::max(1.0, std::abs(expected)))
-                    << "model " << model << " at (" << x << ", " << y << ") number " << k;
-            }
-        }
 }
 
 }  // namespace

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
-#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -19,10 +18,9 @@
 
 namespace facet::test {
 
-// Empty (and a test failure) when the shader does not compile. `inputs` are bound from
-// binding 1 on (images the probe reads, say).
+// Empty (and a test failure) when the shader does not compile.
 inline std::vector<float> run_compute_probe(Context& context, std::string_view name, std::string_view source,
-                                            size_t count, std::span<const DescriptorWrite> inputs = {}) {
+                                            size_t count) {
     ShaderCompiler compiler;
     auto spirv = compiler.compile_source(ShaderStage::compute, name, source);
     if (!spirv) {
@@ -39,8 +37,7 @@ inline std::vector<float> run_compute_probe(Context& context, std::string_view n
                                      MemoryUsage::readback, "probe output"));
     must(context.submit_and_wait([&](VkCommandBuffer cmd) {
         pipeline.bind(cmd);
-        std::vector<DescriptorWrite> writes{DescriptorWrite::storage_buffer(out.handle())};
-        writes.insert(writes.end(), inputs.begin(), inputs.end());
+        const DescriptorWrite writes[] = {DescriptorWrite::storage_buffer(out.handle())};
         pipeline.push_descriptors(cmd, writes);
         vkCmdDispatch(cmd, 1, 1, 1);
         memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,

@@ -23,10 +23,6 @@ FACET_SHARED_CONSTANT(luminance_r, 0.2126)
 FACET_SHARED_CONSTANT(luminance_g, 0.7152)
 FACET_SHARED_CONSTANT(luminance_b, 0.0722)
 
-// The fitted specular lookups' table (facet/render/specular_lobes.h): steps per axis of the
-// n.v and roughness entries the shader reads unfiltered.
-FACET_SHARED_CONSTANT(specular_lobe_table_steps, 64)
-
 #undef FACET_SHARED_CONSTANT
 
 #ifdef __cplusplus

@@ -6,7 +6,7 @@
 layout(set = 2, binding = 7) uniform samplerCube my_irradiance;
 layout(set = 2, binding = 8) uniform samplerCube my_specular;
 layout(set = 2, binding = 9) uniform sampler2D my_lut;
-layout(set = 2, binding = 10) uniform usampler2D my_specular_lobes;  // facet/render/specular_lobes.h
+layout(set = 2, binding = 10) uniform sampler2D my_specular_lobes;  // facet/render/specular_lobes.h
 layout(location = 0) in vec3 n_in;
 layout(location = 1) in vec3 v_in;
 layout(location = 0) out vec4 color;
