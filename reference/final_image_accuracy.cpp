@@ -37,7 +37,10 @@ FinalImageTruth final_image_truth(const FinalImageViews& in, const Vec3& eye, co
         if (image.size() != count * 4)
             throw std::invalid_argument("final_image_accuracy: an image is not " + std::to_string(in.width) + " x " +
                                         std::to_string(in.height) + " RGBA");
-    const bool coated = !in.clearcoat.empty(), filmed = !in.iridescence.empty();
+    const bool coated = !in.clearcoat.empty(), filmed = !in.iridescence.empty(), stretched = !in.anisotropy.empty();
+    if (stretched && in.anisotropy.size() != count * 4)
+        throw std::invalid_argument("final_image_accuracy: the anisotropy image is not " + std::to_string(in.width) +
+                                    " x " + std::to_string(in.height) + " RGBA");
     if (filmed && in.iridescence.size() != count * 4)
         throw std::invalid_argument("final_image_accuracy: the iridescence image is not " + std::to_string(in.width) +
                                     " x " + std::to_string(in.height) + " RGBA");
@@ -71,6 +74,10 @@ FinalImageTruth final_image_truth(const FinalImageViews& in, const Vec3& eye, co
             m.iridescence = in.iridescence[i * 4];
             m.iridescence_ior = in.iridescence[i * 4 + 1];
             m.iridescence_thickness = in.iridescence[i * 4 + 2];
+        }
+        if (stretched && in.anisotropy[i * 4 + 3] > 0) {
+            m.anisotropy = in.anisotropy[i * 4 + 3];
+            m.anisotropy_t = {in.anisotropy[i * 4], in.anisotropy[i * 4 + 1], in.anisotropy[i * 4 + 2]};
         }
         eligible.push_back({i, n, v, m, group_of(roughness, metallic)});
     }

@@ -145,12 +145,31 @@ Vec3 layer_brdf_cos(BrdfModel model, const TruthMaterial& m, const Vec3& n, cons
     for (double& c : h) c /= h_len;
     const double n_h = std::clamp(dot(n, h), 0.0, 1.0), v_h = std::clamp(dot(v, h), 0.0, 1.0);
     const double alpha = std::max(m.roughness * m.roughness, 1e-4), a2 = alpha * alpha;
-    const double D = ggx_d(n_h, a2);
+    double D = ggx_d(n_h, a2);
+    // KHR_materials_anisotropy: the stretched lobe and (glTF) its visibility.
+    double at = alpha, ab = alpha;
+    Vec3 t{0, 0, 0}, b{0, 0, 0};
+    if (m.anisotropy > 0) {
+        const double tn = dot(m.anisotropy_t, n);
+        t = {m.anisotropy_t[0] - tn * n[0], m.anisotropy_t[1] - tn * n[1], m.anisotropy_t[2] - tn * n[2]};
+        const double t_len = std::sqrt(dot(t, t));
+        for (double& c : t) c /= t_len;
+        b = {n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0]};
+        at = alpha + (1 - alpha) * m.anisotropy * m.anisotropy;
+        const double x = dot(t, h) / at, y = dot(b, h) / ab, q = x * x + y * y + n_h * n_h;
+        D = 1 / (pi * at * ab * q * q);
+    }
     const double s1 = 1 - v_h, schlick = s1 * s1 * s1 * s1 * s1;
     const double outside = m.clearcoat > 0 ? 1.5 : 1.0;  // what lies over a thin film
     Vec3 f;
     if (model == BrdfModel::gltf) {
-        const double DV = D * visibility_height_correlated(n_l, n_v, a2);
+        double DV = D * visibility_height_correlated(n_l, n_v, a2);
+        if (m.anisotropy > 0) {
+            auto length3 = [](double x, double y, double z) { return std::sqrt(x * x + y * y + z * z); };
+            const double gv = n_l * length3(at * dot(t, v), ab * dot(b, v), n_v);
+            const double gl = n_v * length3(at * dot(t, l), ab * dot(b, l), n_l);
+            DV = D * 0.5 / std::max(gv + gl, 1e-300);
+        }
         Vec3 Fd, Fm, f0s;
         for (size_t c = 0; c < 3; ++c) {
             f0s[c] = std::min(m.dielectric_f0 * m.specular_color[c], 1.0);

@@ -2,6 +2,7 @@
 # only their order matters (tests/CMakeLists.txt gives them to ctest as COST). Update when
 # a test gets much longer or shorter; a test not named here counts as short.
 set(FACET_TEST_COSTS
+  brdf_models_truth_test 90
   AccuracyTargets.GltfModelEveryGroupWithinItsTarget 60
   AccuracyTargets.ThesisModelEveryGroupWithinItsTarget 60
   Repetition.HostMemoryStaysFlatOver100Cycles 55
@@ -15,7 +16,6 @@ set(FACET_TEST_COSTS
   install.consumer_builds_and_runs 21
   LargeEnvironment.FacetBakeDownsamplesA16kFileWithinItsMemoryBudget 19
   Repetition.ValidatedCyclesReturnEveryObjectAndAllDeviceMemory 18
-  brdf_models_truth_test 51
   HostEngine.RendersLikeFacetRenderWithNoValidationMessageAndNoSteadyAllocation 13
   FacetRender.BadFilesNameTheFileAndWriteNothing 13
   FacetViewer.ScreenshotMatchesFacetRender 11

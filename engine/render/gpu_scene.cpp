@@ -119,7 +119,8 @@ std::vector<GpuMaterial> gpu_materials(const std::vector<Material>& materials) {
                        glm::vec4(m.clearcoat, m.clearcoat_roughness, m.clearcoat_normal_scale, 0.0f),
                        glm::vec4(m.specular_color, 0.0f),
                        glm::vec4(m.iridescence, m.iridescence_ior, m.iridescence_thickness_minimum,
-                                 m.iridescence_thickness_maximum)});
+                                 m.iridescence_thickness_maximum),
+                       glm::vec4(m.anisotropy, m.anisotropy_rotation, 0.0f, 0.0f)});
     return out;
 }
 
@@ -164,7 +165,8 @@ GpuScene::GpuScene(Context& context, const Scene& scene)
         const TextureRef refs[] = {m.base_color_texture,          m.metallic_roughness_texture, m.normal_texture,
                                    m.occlusion_texture,           m.emissive_texture,           m.clearcoat_texture,
                                    m.clearcoat_roughness_texture, m.clearcoat_normal_texture,   m.specular_texture,
-                                   m.specular_color_texture,      m.iridescence_texture,        m.iridescence_thickness_texture};
+                                   m.specular_color_texture,      m.iridescence_texture,        m.iridescence_thickness_texture,
+                                   m.anisotropy_texture};
         static_assert(std::size(refs) == size_t(TextureSlot::count));
         std::array<GpuTexture, size_t(TextureSlot::count)> slots{};
         std::array<bool, size_t(TextureSlot::count)> has{};

@@ -90,7 +90,8 @@ Result<RenderedImages> RenderSession::render_reference(const ReferenceSettings& 
     // The surface each pixel sees, one sample per pixel.
     const std::vector<View> surface_views = {View::normal, View::position, View::basecolor, View::metallic,
                                              View::roughness, View::specular_f0, View::emissive,
-                                             View::clearcoat, View::clearcoat_normal, View::iridescence};
+                                             View::clearcoat, View::clearcoat_normal, View::iridescence,
+                                             View::anisotropy};
     FrameSettings surface_frame = s.frame;
     surface_frame.views = surface_views;
     for (View v : s.frame.views)
@@ -113,7 +114,8 @@ Result<RenderedImages> RenderSession::render_reference(const ReferenceSettings& 
     const ReferenceSurface surface{view_image(View::normal),    view_image(View::position), view_image(View::basecolor),
                                    view_image(View::metallic),  view_image(View::roughness), view_image(View::specular_f0),
                                    view_image(View::emissive), view_image(View::clearcoat),
-                                   view_image(View::clearcoat_normal), view_image(View::iridescence)};
+                                   view_image(View::clearcoat_normal), view_image(View::iridescence),
+                                   view_image(View::anisotropy)};
     auto stats = s.reference->accumulate(surface, s.frame, settings, progress);
     if (!stats) return stats.error();
     if (stats_out) *stats_out = *stats;

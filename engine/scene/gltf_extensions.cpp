@@ -19,6 +19,7 @@ const std::vector<std::string_view>& supported_extensions() {
             "EXT_texture_webp",                 // below; decoded by OpenImageIO (io/texture_decode.cpp)
             "KHR_draco_mesh_compression",       // gltf_decompress_draco.cpp
             "KHR_lights_punctual",              // gltf_nodes.cpp
+            "KHR_materials_anisotropy",         // gltf_material_extensions.cpp; drawn by forward.frag (FACET_ANISOTROPY)
             "KHR_materials_clearcoat",          // gltf_material_extensions.cpp; drawn by forward.frag (CLEARCOAT)
             "KHR_materials_emissive_strength",  // gltf_materials.cpp
             "KHR_materials_ior",                // gltf_material_extensions.cpp

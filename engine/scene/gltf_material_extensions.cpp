@@ -104,6 +104,8 @@ void read_unlit(const tinygltf::Material& m, Material& out) {
     out.specular_texture = out.specular_color_texture = {};
     out.iridescence = 0.0f;
     out.iridescence_texture = out.iridescence_thickness_texture = {};
+    out.anisotropy = 0.0f;
+    out.anisotropy_texture = {};
     out.emissive = glm::vec3(0.0f);
     out.emissive_texture = {};
     out.normal_texture = {};
@@ -153,6 +155,19 @@ void read_iridescence(const tinygltf::Model& model, const tinygltf::Material& m,
     out.iridescence_thickness_maximum = float(maximum);
     out.iridescence_texture = texture_info(model, *film, "iridescenceTexture", at);
     out.iridescence_thickness_texture = texture_info(model, *film, "iridescenceThicknessTexture", at);
+}
+
+void read_anisotropy(const tinygltf::Model& model, const tinygltf::Material& m, const std::string& where,
+                     Material& out) {
+    const tinygltf::Value* stretch = extension(m, "KHR_materials_anisotropy", where);
+    if (!stretch) return;
+    const std::string at = where + ": KHR_materials_anisotropy";
+    const double strength = number(*stretch, "anisotropyStrength", 0.0, at);
+    if (strength < 0.0 || strength > 1.0)
+        fail(at + ".anisotropyStrength " + number_text(strength) + " is outside [0, 1]");
+    out.anisotropy = float(strength);
+    out.anisotropy_rotation = float(number(*stretch, "anisotropyRotation", 0.0, at));
+    out.anisotropy_texture = texture_info(model, *stretch, "anisotropyTexture", at);
 }
 
 void read_dielectric_extensions(const tinygltf::Model& model, const tinygltf::Material& m, const std::string& where,

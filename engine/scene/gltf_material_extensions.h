@@ -38,6 +38,11 @@ void read_clearcoat(const tinygltf::Model& model, const tinygltf::Material& mate
 void read_iridescence(const tinygltf::Model& model, const tinygltf::Material& material, const std::string& where,
                       Material& out);
 
+// KHR_materials_anisotropy: its strength (in [0, 1]), rotation (radians) and texture (with
+// texCoord and KHR_texture_transform).
+void read_anisotropy(const tinygltf::Model& model, const tinygltf::Material& material, const std::string& where,
+                     Material& out);
+
 // KHR_materials_ior (the dielectric F0) and KHR_materials_specular: its factors and its two
 // textures (with texCoord and KHR_texture_transform, as the core textures).
 void read_dielectric_extensions(const tinygltf::Model& model, const tinygltf::Material& material,

@@ -71,7 +71,7 @@ PrimitiveDeform load_primitive(const tinygltf::Model& model, const tinygltf::Pri
         read.deform.normals_generated = !read.has_normals;
         if (!read.has_normals) generate_normals(vertices, indices);
         const Material* m = material < scene.materials.size() ? &scene.materials[material] : nullptr;
-        if (!read.has_tangents && m && m->has_normal_map()) {
+        if (!read.has_tangents && m && m->needs_tangents()) {
             read.deform.tangents_generated = true;
             generate_tangents_for(vertices, indices, m->tangent_uv_set());
         }

@@ -49,6 +49,11 @@ struct FacetSurface {
     float iridescence;
     float iridescence_ior;
     float iridescence_thickness;
+    // KHR_materials_anisotropy (facet_surface_anisotropy): strength 0 (none) .. 1 and the
+    // unit direction of the stretch in the surface's plane. Shaded only where
+    // FACET_ANISOTROPY is defined before this file is included.
+    float anisotropy;
+    vec3 anisotropy_t;
 };
 
 // glTF's metallic-roughness material under the model `brdf`.
@@ -71,6 +76,8 @@ FacetSurface facet_surface(uint brdf, vec3 n, vec3 albedo, float metallic, float
     s.iridescence = 0.0;
     s.iridescence_ior = 1.3;
     s.iridescence_thickness = 0.0;
+    s.anisotropy = 0.0;
+    s.anisotropy_t = vec3(1.0, 0.0, 0.0);
     return s;
 }
 
@@ -103,6 +110,54 @@ FacetSurface facet_clearcoat_layer(FacetSurface s) {
 float facet_clearcoat_fresnel(FacetSurface s, float VdotH) {
     float x = clamp(1.0 - VdotH, 0.0, 1.0), x2 = x * x;
     return s.clearcoat * (0.04 + 0.96 * x2 * x2 * x);
+}
+
+// Puts KHR_materials_anisotropy on the surface: strength 0..1 and the direction of the
+// stretch (any vector not along n: its part in the surface's plane is taken, normalised).
+void facet_surface_anisotropy(inout FacetSurface s, float strength, vec3 direction) {
+    vec3 t = direction - s.n * dot(s.n, direction);
+    float len2 = dot(t, t);
+    s.anisotropy = len2 > 1e-12 ? strength : 0.0;
+    s.anisotropy_t = len2 > 1e-12 ? t * inversesqrt(len2) : vec3(1.0, 0.0, 0.0);
+}
+
+// The anisotropic lobe's D V (glTF model: the extension's anisotropic GGX with
+// alpha_t = mix(alpha, 1, strength^2), alpha_b = alpha, and its height-correlated Smith
+// visibility) or D G / (4 n.l n.v) (the thesis' model: the anisotropic D with the thesis'
+// isotropic Schlick-GGX G), for unit l, v and h = normalize(l + v).
+// facet_anisotropic_dg with the lobe's widths given: alpha_t along t, alpha_b along b.
+float facet_anisotropic_dg(FacetSurface s, vec3 v, vec3 l, vec3 h, float NdotV, float NdotL, bool punctual, float at,
+                           float ab) {
+    vec3 t = s.anisotropy_t, b = cross(s.n, t);
+    float a2 = at * ab;
+    vec3 f = vec3(ab * dot(t, h), at * dot(b, h), a2 * clamp(dot(s.n, h), 0.0, 1.0));
+    float w2 = a2 / max(dot(f, f), 1e-30);
+    float D = a2 * w2 * w2 / PI;
+    if (s.brdf == FACET_BRDF_GLTF) {
+        float gv = NdotL * length(vec3(at * dot(t, v), ab * dot(b, v), NdotV));
+        float gl = NdotV * length(vec3(at * dot(t, l), ab * dot(b, l), NdotL));
+        return D * 0.5 / max(gv + gl, 1e-30);
+    }
+    float k = punctual ? k_direct(s.roughness) : k_ibl(s.roughness);
+    return D * G_Smith(NdotV, NdotL, k) / max(4.0 * NdotV * NdotL, 1e-8);
+}
+
+float facet_anisotropic_dg(FacetSurface s, vec3 v, vec3 l, vec3 h, float NdotV, float NdotL, bool punctual) {
+    float alpha = max(s.roughness * s.roughness, MIN_ALPHA);
+    return facet_anisotropic_dg(s, v, l, h, NdotV, NdotL, punctual, mix(alpha, 1.0, s.anisotropy * s.anisotropy), alpha);
+}
+
+// The normal the environment's lookups reflect about on an anisotropic surface: bent from n
+// towards the plane of the stretch as the lobe widens (the Khronos sample viewer's bent
+// normal: mix(cross(cross(t, v), t), n, (1 - strength (1 - roughness))^4)).
+vec3 facet_anisotropic_lookup_normal(FacetSurface s, vec3 v) {
+    vec3 b = cross(s.anisotropy_t, v);
+    vec3 bent = cross(b, s.anisotropy_t);
+    float bend = 1.0 - s.anisotropy * (1.0 - s.roughness);
+    bend *= bend;
+    bend *= bend;
+    vec3 m = mix(bent, s.n, bend);
+    return dot(m, m) > 1e-12 ? normalize(m) : s.n;
 }
 
 // Puts KHR_materials_iridescence's thin film on the surface: weight 0..1, the film's index
@@ -246,7 +301,11 @@ void facet_reflect_light(FacetSurface s, vec3 v, float NdotV, vec3 l, vec3 incid
         vec3 F, kd;
         facet_fresnel(s, VdotH, F, kd);
         diffuse = kd * s.albedo / PI * incident * NdotL;
-        specular = F * facet_specular_dg(s, NdotV, NdotL, clamp(dot(s.n, h), 0.0, 1.0), punctual) * incident * NdotL;
+        float dg = facet_specular_dg(s, NdotV, NdotL, clamp(dot(s.n, h), 0.0, 1.0), punctual);
+#ifdef FACET_ANISOTROPY
+        if (s.anisotropy > 0.0) dg = facet_anisotropic_dg(s, v, l, h, NdotV, NdotL, punctual);
+#endif
+        specular = F * dg * incident * NdotL;
     }
     if (s.clearcoat > 0.0) {
         float coat = facet_clearcoat_fresnel(s, VdotH);
@@ -501,6 +560,19 @@ void facet_disk_light(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, 
     diffuse = kd * s.albedo * (irradiance / PI) * disk.radiance;
     // 4 (v.h) / (n.h) = 4 (v.h)^2 (n.h)^2 q.
     specular = F * (visibility * NdotL * 4.0 * VdotH * VdotH * NdotH * NdotH * q * share * scale) * disk.radiance;
+#ifdef FACET_ANISOTROPY
+    // KHR_materials_anisotropy: the closed form above (isotropic) times the ratio of the
+    // stretched lobe to the round one at the cap's centre, both widened by the cap's radius
+    // (its slope variance added to each width's square): the point ratio for small caps,
+    // 1 where the cap is wider than either lobe.
+    if (s.anisotropy > 0.0) {
+        float r2 = sin_theta * sin_theta;
+        float at = mix(alpha, 1.0, s.anisotropy * s.anisotropy);
+        float stretched = facet_anisotropic_dg(s, v, c, h, NdotV, NdotL, false, sqrt(at * at + r2), sqrt(a2 + r2));
+        float round = facet_anisotropic_dg(s, v, c, h, NdotV, NdotL, false, sqrt(a2 + r2), sqrt(a2 + r2));
+        specular *= stretched / max(round, 1e-30);
+    }
+#endif
 }
 
 // KHR_materials_clearcoat's layer under a disk: `below`, the factor that dims the surface's
@@ -544,6 +616,11 @@ void facet_lobe_entries(sampler2D lobe_table, uint brdf, float x, float y, out v
 FacetSpecularLookups facet_specular_lookups(FacetSurface s, vec3 v, float NdotV, float specular_levels,
                                               sampler2D lobe_table, bool fitted) {
     FacetSpecularLookups k;
+#ifdef FACET_ANISOTROPY
+    // A copy: the lookups reflect about the bent normal, at the surface's roughness (at
+    // sqrt(alpha_t alpha_b) instead the sun sky's worst group went from 16% to 21%).
+    if (s.anisotropy > 0.0) s.n = facet_anisotropic_lookup_normal(s, v);
+#endif
     vec3 R = reflect(-v, s.n);
     float lod = facet_specular_lod(s.roughness, specular_levels);
     for (int i = 0; i < 3; ++i) {

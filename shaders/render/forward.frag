@@ -10,7 +10,8 @@
 // unlit materials), CLEARCOAT (KHR_materials_clearcoat's layer) and its HAS_CLEARCOAT_MAP,
 // HAS_CLEARCOAT_ROUGHNESS_MAP, HAS_CLEARCOAT_NORMAL_MAP, HAS_SPECULAR_MAP and HAS_SPECULAR_COLOR_MAP
 // (KHR_materials_specular's textures), FACET_IRIDESCENCE (KHR_materials_iridescence's film) and
-// its HAS_IRIDESCENCE_MAP, HAS_IRIDESCENCE_THICKNESS_MAP, <SLOT>_UV (a texture's coordinates: its uv set and
+// its HAS_IRIDESCENCE_MAP, HAS_IRIDESCENCE_THICKNESS_MAP, FACET_ANISOTROPY (KHR_materials_anisotropy)
+// and its HAS_ANISOTROPY_MAP, <SLOT>_UV (a texture's coordinates: its uv set and
 // KHR_texture_transform) and NORMAL_TANGENT_FRAME, USE_IBL, BRDF_THESIS (the thesis' model
 // instead of glTF's), MULTISCATTER (energy compensation), DOMINANT_DIRECTION (bent specular
 // lookup), VIEW (what is written: render/views.glsl).
@@ -87,7 +88,7 @@ const uint brdf_model = FACET_BRDF_GLTF;
 layout(location = 0) in vec3 in_world;
 layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec2 in_uv;
-#if defined(HAS_NORMAL_MAP) || defined(HAS_CLEARCOAT_NORMAL_MAP)
+#if defined(HAS_NORMAL_MAP) || defined(HAS_CLEARCOAT_NORMAL_MAP) || defined(FACET_ANISOTROPY)
 layout(location = 3) in vec4 in_tangent;
 #endif
 layout(location = 4) in vec4 in_color;
@@ -132,6 +133,9 @@ layout(location = 5) in vec2 in_uv1;
 #ifndef IRIDESCENCE_THICKNESS_UV
 #define IRIDESCENCE_THICKNESS_UV in_uv
 #endif
+#ifndef ANISOTROPY_UV
+#define ANISOTROPY_UV in_uv
+#endif
 
 layout(location = 0) out vec4 out_color;
 
@@ -173,7 +177,7 @@ Surface surface_at(MaterialData m) {
 #endif
 #endif
     vec3 geometric_n = n;
-#if defined(HAS_NORMAL_MAP) || defined(HAS_CLEARCOAT_NORMAL_MAP)
+#if defined(HAS_NORMAL_MAP) || defined(HAS_CLEARCOAT_NORMAL_MAP) || defined(FACET_ANISOTROPY)
     // Tangent frame of the glTF specification: bitangent = cross(n, t) * w.
     vec3 t = in_tangent.xyz - n * dot(n, in_tangent.xyz);
     bool has_frame = dot(t, t) > 1e-12;
@@ -238,6 +242,20 @@ Surface surface_at(MaterialData m) {
     thickness = mix(m.iridescence.z, m.iridescence.w, texture(iridescence_thickness_map, IRIDESCENCE_THICKNESS_UV).g);
 #endif
     facet_surface_iridescence(s.shading, clamp(film, 0.0, 1.0), m.iridescence.y, max(thickness, 0.0));
+#endif
+#ifdef FACET_ANISOTROPY
+    // The stretch: its direction in tangent space (cos, sin) of the rotation, or the map's RG
+    // (from [0, 1] to [-1, 1]) turned by it; its strength times the map's B.
+    float strength = m.anisotropy.x;
+    vec2 direction = vec2(cos(m.anisotropy.y), sin(m.anisotropy.y));
+#ifdef HAS_ANISOTROPY_MAP
+    vec3 am = texture(anisotropy_map, ANISOTROPY_UV).rgb;
+    vec2 d = am.rg * 2.0 - 1.0;
+    d = dot(d, d) > 1e-12 ? normalize(d) : vec2(1.0, 0.0);
+    direction = mat2(direction.x, direction.y, -direction.y, direction.x) * d;
+    strength *= am.b;
+#endif
+    if (has_frame) facet_surface_anisotropy(s.shading, clamp(strength, 0.0, 1.0), frame_tbn * vec3(direction, 0.0));
 #endif
     return s;
 }
@@ -391,6 +409,8 @@ void main() {
     out_color = vec4(s.clearcoat_n, 1.0);
 #elif VIEW == VIEW_IRIDESCENCE
     out_color = vec4(s.iridescence, s.iridescence_ior, s.iridescence_thickness, 1.0);
+#elif VIEW == VIEW_ANISOTROPY
+    out_color = vec4(s.anisotropy_t, s.anisotropy);
 #elif defined(UNLIT)
     out_color = vec4(0.0, 0.0, 0.0, 1.0);  // D, F, G: no BRDF
 #else

@@ -14,7 +14,7 @@ layout(location = 5) in vec2 in_uv1;
 layout(location = 0) out vec3 out_world;
 layout(location = 1) out vec3 out_normal;
 layout(location = 2) out vec2 out_uv;
-#if defined(HAS_NORMAL_MAP) || defined(HAS_CLEARCOAT_NORMAL_MAP)
+#if defined(HAS_NORMAL_MAP) || defined(HAS_CLEARCOAT_NORMAL_MAP) || defined(FACET_ANISOTROPY)
 layout(location = 3) out vec4 out_tangent;
 #endif
 layout(location = 4) out vec4 out_color;
@@ -28,7 +28,7 @@ void main() {
     out_uv = in_uv;
     out_uv1 = in_uv1;
     out_color = in_color;
-#if defined(HAS_NORMAL_MAP) || defined(HAS_CLEARCOAT_NORMAL_MAP)
+#if defined(HAS_NORMAL_MAP) || defined(HAS_CLEARCOAT_NORMAL_MAP) || defined(FACET_ANISOTROPY)
     // A mirroring world matrix turns cross(n, t) around: the handedness turns with it.
     float mirrored = determinant(mat3(instance.world)) < 0.0 ? -1.0 : 1.0;
     out_tangent = vec4(mat3(instance.world) * in_tangent.xyz, in_tangent.w * mirrored);

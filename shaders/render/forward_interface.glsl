@@ -31,6 +31,7 @@ struct MaterialData {
     vec4 clearcoat;    // KHR_materials_clearcoat: factor, roughness, normal texture scale
     vec4 specular_color;  // KHR_materials_specular's colour (rgb)
     vec4 iridescence;     // KHR_materials_iridescence: factor, film ior, thickness minimum, maximum (nm)
+    vec4 anisotropy;      // KHR_materials_anisotropy: strength, rotation (radians)
 };
 layout(binding = 3, std430) readonly buffer Materials { MaterialData materials[]; };
 
@@ -50,6 +51,7 @@ layout(binding = 16) uniform sampler2D specular_factor_map;      // KHR_material
 layout(binding = 17) uniform sampler2D specular_color_map;       // RGB (sRGB) x specularColorFactor
 layout(binding = 18) uniform sampler2D iridescence_map;          // KHR_materials_iridescence: R x factor
 layout(binding = 19) uniform sampler2D iridescence_thickness_map;  // G: minimum .. maximum thickness
+layout(binding = 20) uniform sampler2D anisotropy_map;           // KHR_materials_anisotropy: RG direction, B strength
 
 layout(push_constant) uniform Draw {
     uint instance;

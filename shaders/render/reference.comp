@@ -7,8 +7,10 @@
 // added in closed form. The BRDF is the forward pass's model (facet/shading.glsl's
 // facet_reflect_light, glTF's or the thesis'). The environment is piecewise constant per texel,
 // as in the brute-force sums of the tests.
-// KHR_materials_iridescence's film is shaded wherever the iridescence view says so.
+// KHR_materials_iridescence's film and KHR_materials_anisotropy's stretch are shaded wherever
+// their views say so.
 #define FACET_IRIDESCENCE 1
+#define FACET_ANISOTROPY 1
 #include "facet/shading.glsl"
 #include "ibl/equirect.glsl"
 #include "ibl/sampling.glsl"
@@ -33,6 +35,7 @@ layout(binding = 11, rgba32f) uniform image2D moments;       // x: sum of Y, y: 
 layout(binding = 12) uniform sampler2D clearcoat_view;         // KHR_materials_clearcoat: weight, roughness
 layout(binding = 13) uniform sampler2D clearcoat_normal_view;  // the clear coat's normal
 layout(binding = 14) uniform sampler2D iridescence_view;       // KHR_materials_iridescence: weight, ior, thickness
+layout(binding = 15) uniform sampler2D anisotropy_view;        // KHR_materials_anisotropy: direction, strength
 
 layout(push_constant) uniform Params {
     vec4 camera_position;  // xyz
@@ -197,6 +200,8 @@ void main() {
     }
     vec4 film = texelFetch(iridescence_view, pixel, 0);
     if (film.r > 0.0) facet_surface_iridescence(s.shading, film.r, film.g, film.b);
+    vec4 stretch = texelFetch(anisotropy_view, pixel, 0);
+    if (stretch.a > 0.0) facet_surface_anisotropy(s.shading, stretch.a, stretch.xyz);
     vec3 p = position.xyz;
     // An unlit surface (KHR_materials_unlit, points, lines: the metallic view's alpha 0) is
     // its base colour and emission, exactly, with nothing to sample.

@@ -27,7 +27,7 @@ struct TempDir : test::GltfTempDir {
 Result<Scene> load_material(const TempDir& dir, const std::string& extensions) {
     const std::string text = R"({"asset": {"version": "2.0"},
   "extensionsUsed": ["KHR_materials_ior", "KHR_materials_specular", "KHR_materials_unlit", "KHR_materials_clearcoat",
-                     "KHR_materials_iridescence"],
+                     "KHR_materials_iridescence", "KHR_materials_anisotropy"],
   "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
   "bufferViews": [{"buffer": 0, "byteLength": 36}],
   "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}],
@@ -142,6 +142,21 @@ TEST(GltfMaterialExtensions, IridescenceReadsItsFactors) {
     EXPECT_EQ(unlit->materials[0].iridescence, 0.0f);
 }
 
+TEST(GltfMaterialExtensions, AnisotropyReadsItsFactors) {
+    TempDir dir;
+    const Result<Scene> absent = load_material(dir, R"("KHR_materials_anisotropy": {})");
+    ASSERT_TRUE(absent.ok()) << absent.error().message;
+    EXPECT_EQ(absent->materials[0].anisotropy, 0.0f);
+    EXPECT_EQ(absent->materials[0].anisotropy_rotation, 0.0f);
+    const Result<Scene> scene =
+        load_material(dir, R"("KHR_materials_anisotropy": {"anisotropyStrength": 0.4, "anisotropyRotation": -2})");
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    EXPECT_EQ(scene->materials[0].anisotropy, 0.4f);
+    EXPECT_EQ(scene->materials[0].anisotropy_rotation, -2.0f);
+    EXPECT_TRUE(scene->materials[0].needs_tangents());
+    EXPECT_TRUE(scene->warnings.empty());
+}
+
 TEST(GltfMaterialExtensions, InvalidValuesAreErrorsNamingTheMaterial) {
     TempDir dir;
     const std::string file = (dir.path / "model.gltf").string();
@@ -171,6 +186,10 @@ TEST(GltfMaterialExtensions, InvalidValuesAreErrorsNamingTheMaterial) {
          "material 'glass': KHR_materials_iridescence.iridescenceThicknessMinimum must be a finite number"},
         {R"("KHR_materials_iridescence": {"iridescenceTexture": {"index": 2}})",
          "material 'glass': KHR_materials_iridescence: iridescenceTexture texture 2 out of range (0 textures)"},
+        {R"("KHR_materials_anisotropy": {"anisotropyStrength": -0.1})",
+         "material 'glass': KHR_materials_anisotropy.anisotropyStrength -0.1 is outside [0, 1]"},
+        {R"("KHR_materials_anisotropy": {"anisotropyRotation": [1]})",
+         "material 'glass': KHR_materials_anisotropy.anisotropyRotation must be a finite number"},
         {R"("KHR_materials_clearcoat": {"clearcoatFactor": 2})",
          "material 'glass': KHR_materials_clearcoat.clearcoatFactor 2 is outside [0, 1]"},
         {R"("KHR_materials_clearcoat": {"clearcoatRoughnessFactor": -0.5})",

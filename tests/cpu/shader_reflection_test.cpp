@@ -117,7 +117,8 @@ TEST(ShaderReflection, ForwardVertexAndFragmentMergeIntoOneLayout) {
                      {16, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},   // KHR_materials_specular's two
                      {17, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                      {18, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},   // KHR_materials_iridescence's two
-                     {19, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
+                     {19, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                     {20, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},   // KHR_materials_anisotropy's
                     "forward");
     EXPECT_EQ(merged->push_constant_bytes, 8u);  // uint instance, uint material
 }

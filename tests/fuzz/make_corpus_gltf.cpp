@@ -93,7 +93,9 @@ std::string textured(const std::string& image) {
            R"("clearcoatNormalTexture":{"index":0,"scale":0.5,"extensions":{"KHR_texture_transform":{"rotation":1}}}},)"
            R"("KHR_materials_iridescence":{"iridescenceFactor":0.8,"iridescenceIor":1.6,"iridescenceThicknessMinimum":150,)"
            R"("iridescenceThicknessMaximum":700,"iridescenceTexture":{"index":0},)"
-           R"("iridescenceThicknessTexture":{"index":0,"texCoord":0}}}},)"
+           R"("iridescenceThicknessTexture":{"index":0,"texCoord":0}},)"
+           R"("KHR_materials_anisotropy":{"anisotropyStrength":0.5,"anisotropyRotation":0.3,)"
+           R"("anisotropyTexture":{"index":0}}}},)"
            R"({"alphaMode":"MASK","alphaCutoff":0.3,"doubleSided":true,"normalTexture":{"index":0},)"
            R"("extensions":{"KHR_materials_ior":{"ior":1.33},"KHR_materials_specular":{"specularFactor":0.5,)"
            R"("specularColorFactor":[1,0.5,0.5],"specularTexture":{"index":0},"specularColorTexture":{"index":0,"texCoord":0}}}},)"
@@ -102,7 +104,7 @@ std::string textured(const std::string& image) {
            R"("samplers":[{"magFilter":9728,"minFilter":9987,"wrapS":33648,"wrapT":33071}],)"
            R"("images":[)" + image + "],"
            R"("extensionsUsed":["KHR_materials_clearcoat","KHR_materials_emissive_strength","KHR_materials_ior",)"
-           R"("KHR_materials_iridescence",)"
+           R"("KHR_materials_iridescence","KHR_materials_anisotropy",)"
            R"("KHR_materials_specular",)"
            R"("KHR_materials_unlit","KHR_texture_transform"],)" +
            kOneNode;

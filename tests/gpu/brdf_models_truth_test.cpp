@@ -123,12 +123,13 @@ Light directional_light() {
 // Every 7th covered pixel that faces the eye and `light` (n.v, n.l >= 0.1) against E x the
 // truth's brdf_cos for the material the views report, `layer` applied to it: the largest
 // relative distance over channels above 1e-3, and the same for the material without it.
+// `layer` gets the pixel's index too (y * width + x).
 struct DirectionalCheck {
     int checked = 0;
     double worst = 0, worst_without_layer = 0;
 };
 DirectionalCheck check_directional(const test::FinalImageViews& v, const glm::vec3& eye, const Light& light,
-                                   BrdfModel model, const std::function<void(test::TruthMaterial&)>& layer) {
+                                   BrdfModel model, const std::function<void(test::TruthMaterial&, size_t)>& layer) {
     DirectionalCheck out;
     const test::Vec3 l{-light.direction.x, -light.direction.y, -light.direction.z};
     for (size_t p = 0; p < size_t(v.width) * v.height; p += 7) {
@@ -147,7 +148,7 @@ DirectionalCheck check_directional(const test::FinalImageViews& v, const glm::ve
         m.metallic = v.metallic[p * 4];
         m.roughness = v.roughness[p * 4];
         const test::Vec3 bare = test::brdf_cos(model, m, normal, view, l, true);
-        layer(m);
+        layer(m, p);
         const test::Vec3 f = test::brdf_cos(model, m, normal, view, l, true);
         for (size_t c = 0; c < 3; ++c) {
             const double want = light.intensity * f[c];
@@ -174,7 +175,7 @@ TEST(BrdfModelsTruth, PunctualLightsAreEachModelsBrdf) {
         auto frame = (*session)->render_frame();
         ASSERT_TRUE(frame) << frame.error().message;
         const DirectionalCheck c = check_directional(views_of(*frame, frame->hdr), (*session)->camera().position, light,
-                                                     model, [](test::TruthMaterial&) {});
+                                                     model, [](test::TruthMaterial&, size_t) {});
         std::printf("%s model, one directional light: %d pixels, worst relative error %.2e\n", brdf_model_name(model),
                     c.checked, c.worst);
         EXPECT_GT(c.checked, 1000);
@@ -236,7 +237,7 @@ TEST(BrdfModelsTruth, ClearcoatLayerMatchesTheTruthUnderALightAndTheEnvironment)
             ASSERT_NEAR(along, 1.0, 1e-5) << p;
         }
         const DirectionalCheck c =
-            check_directional(v, (*session)->camera().position, light, model, [](test::TruthMaterial& m) {
+            check_directional(v, (*session)->camera().position, light, model, [](test::TruthMaterial& m, size_t) {
                 m.clearcoat = 1.0;
                 m.clearcoat_roughness = 0.25;
             });
@@ -294,7 +295,7 @@ TEST(BrdfModelsTruth, ColouredSpecularMatchesTheTruthUnderALightAndTheEnvironmen
         m.specular_color = colour;
         m.specular_factor = 0.8f;
     };
-    auto truth_tint = [&](test::TruthMaterial& m) {
+    auto truth_tint = [&](test::TruthMaterial& m, size_t) {
         m.dielectric_f0 = 1.0 / 9.0;
         m.specular_color = {colour.x, colour.y, colour.z};
         m.specular_weight = 0.8;
@@ -360,7 +361,7 @@ TEST(BrdfModelsTruth, IridescentFilmMatchesTheTruthUnderALightAndTheEnvironment)
         m.iridescence_ior = 1.8f;
         m.iridescence_thickness_maximum = 380.0f;
     };
-    auto truth_film = [](test::TruthMaterial& m) {
+    auto truth_film = [](test::TruthMaterial& m, size_t) {
         m.iridescence = 0.9;
         m.iridescence_ior = 1.8;
         m.iridescence_thickness = 380.0;
@@ -422,6 +423,97 @@ TEST(BrdfModelsTruth, IridescentFilmMatchesTheTruthUnderALightAndTheEnvironment)
         for (const auto& [what, hdr, bound] : measured) {
             const test::FinalImageAccuracy a = test::final_image_accuracy(truth, *hdr);
             std::printf("iridescent film, %s model, %s:\n%s", brdf_model_name(model), what,
+                        test::format_accuracy_table(a).c_str());
+            EXPECT_GT(a.pixels, 700u);
+            for (const test::GroupError& g : a.groups) EXPECT_LT(g.mean_rel, bound) << what << ": " << test::group_name(g);
+        }
+    }
+    EXPECT_EQ(context.validation_message_count(), messages);
+}
+
+// KHR_materials_anisotropy: strength 0.6 along each sphere's tangent (its parallels) on every
+// sphere, both models: the view reports the direction in the surface's plane; a directional
+// light pixel by pixel against the truth with the stretched lobe (written in double precision
+// from the extension's D and V); the sun sky per group against the same truth: the reference
+// mode (3.2% in the worst group, its isotropic importance sampling noisier on the stretched
+// lobe) and the default shading, whose split sum follows the stretched lobe only by its bent
+// lookup normal (worst group 16.3% glTF / 12.8% thesis, overestimating the smooth groups:
+// the bound says what it is, not what it should be; issue 14's note).
+TEST(BrdfModelsTruth, AnisotropicLobeMatchesTheTruthUnderALightAndTheEnvironment) {
+    Context& context = test::gpu();
+    const uint32_t messages = context.validation_message_count();
+    auto stretch = [](Material& m) { m.anisotropy = 0.6f; };
+    std::vector<View> views = kViews;
+    views.push_back(View::anisotropy);
+    auto stretch_views = [](const RenderedImages& images, const std::vector<float>& hdr) {
+        test::FinalImageViews v = views_of(images, hdr);
+        v.anisotropy = images.views.at(5).second;
+        return v;
+    };
+    SunSkyFile sky;
+    const test::TexelLights texels = test::texel_lights(sky.env);
+    for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis}) {
+        RenderJob job = spheres_job(model, "none");
+        job.frame.views = views;
+        const Light light = directional_light();
+        job.extra_lights = {light};
+        auto session = spheres_with(context, job, stretch);
+        ASSERT_TRUE(session) << session.error().message;
+        auto frame = (*session)->render_frame();
+        ASSERT_TRUE(frame) << frame.error().message;
+        const test::FinalImageViews v = stretch_views(*frame, frame->hdr);
+        size_t covered = 0;
+        for (size_t p = 0; p < size_t(v.width) * v.height; ++p) {
+            if (v.normal[p * 4 + 3] < 1.0f) continue;
+            ++covered;
+            ASSERT_FLOAT_EQ(v.anisotropy[p * 4 + 3], 0.6f) << p;
+            double along = 0, len = 0;
+            for (size_t c = 0; c < 3; ++c) {
+                along += double(v.anisotropy[p * 4 + c]) * v.normal[p * 4 + c];
+                len += double(v.anisotropy[p * 4 + c]) * v.anisotropy[p * 4 + c];
+            }
+            ASSERT_NEAR(along, 0.0, 1e-4) << p;  // in the surface's plane
+            ASSERT_NEAR(len, 1.0, 1e-4) << p;
+            ASSERT_NEAR(v.anisotropy[p * 4 + 1], 0.0, 1e-2) << p;  // a parallel: horizontal (interpolated)
+        }
+        EXPECT_GT(covered, 10000u);
+        const std::vector<float>& dirs = frame->views.at(5).second;
+        const DirectionalCheck c = check_directional(v, (*session)->camera().position, light, model,
+                                                     [&](test::TruthMaterial& m, size_t p) {
+                                                         m.anisotropy = 0.6;
+                                                         m.anisotropy_t = {dirs[p * 4], dirs[p * 4 + 1], dirs[p * 4 + 2]};
+                                                     });
+        std::printf("%s model, anisotropic lobe, one directional light: %d pixels, worst relative error %.2e (the "
+                    "isotropic truth: %.2f)\n", brdf_model_name(model), c.checked, c.worst, c.worst_without_layer);
+        EXPECT_GT(c.checked, 1000);
+        EXPECT_LT(c.worst, 2e-3) << brdf_model_name(model);
+        EXPECT_GT(c.worst_without_layer, 0.1) << "the stretch changes the image";
+
+        RenderJob env_job = spheres_job(model, sky.path);
+        env_job.frame.views = views;
+        auto env_session = spheres_with(context, env_job, stretch);
+        ASSERT_TRUE(env_session) << env_session.error().message;
+        auto env_frame = (*env_session)->render_frame();
+        ASSERT_TRUE(env_frame) << env_frame.error().message;
+        test::AccuracySettings settings;
+        settings.max_pixels = 1000;
+        const glm::vec3 e = (*env_session)->camera().position;
+        const test::FinalImageTruth truth = test::final_image_truth(stretch_views(*env_frame, env_frame->hdr),
+                                                                    {e.x, e.y, e.z}, texels, model, settings);
+        std::vector<std::tuple<const char*, const std::vector<float>*, double>> measured = {
+            {"default shading", &env_frame->hdr, 0.20}};
+        Result<RenderedImages> reference = Error{"not rendered"};
+        if (model == BrdfModel::gltf) {
+            ReferenceSettings rs;
+            rs.min_samples = rs.max_samples = 256;
+            rs.noise_target = 0;
+            reference = (*env_session)->render_reference(rs);
+            ASSERT_TRUE(reference) << reference.error().message;
+            measured.push_back({"reference 256 spp", &reference->hdr, 0.04});
+        }
+        for (const auto& [what, hdr, bound] : measured) {
+            const test::FinalImageAccuracy a = test::final_image_accuracy(truth, *hdr);
+            std::printf("anisotropic lobe, %s model, %s:\n%s", brdf_model_name(model), what,
                         test::format_accuracy_table(a).c_str());
             EXPECT_GT(a.pixels, 700u);
             for (const test::GroupError& g : a.groups) EXPECT_LT(g.mean_rel, bound) << what << ": " << test::group_name(g);

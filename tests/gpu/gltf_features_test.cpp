@@ -305,6 +305,40 @@ TEST_F(GltfFeaturesTest, IridescenceTexturesReachTheFilm) {
     EXPECT_NEAR(right.b, 200.0f, 1e-3f);
 }
 
+// KHR_materials_anisotropy's direction and strength, as the view the reference mode reads
+// reports them: on a quad whose tangents are generated (u along +X), rotation 0 stretches
+// along the tangent; the texture's RG (1, 0.5) (the tangent) turned by a rotation of pi/2
+// stretches along the bitangent (Y); strength x the texture's B.
+TEST_F(GltfFeaturesTest, AnisotropyDirectionAndStrengthReachTheLobe) {
+    const unsigned char texel[] = {255, 128, 128, 255};  // RG (1, 0.5) -> (1, 0); B 0.502
+    ASSERT_TRUE(write_png(dir.file("stretch.png"), 1, 1, texel));
+    GltfBuilder b = lit_quad_builder();
+    auto stretch_view = [&](const std::string& name, const std::string& extension) {
+        const std::string members =
+            mesh_file(R"("POSITION": 0, "TEXCOORD_0": 2, "NORMAL": 3)", 1,
+                      R"({"pbrMetallicRoughness": {"metallicFactor": 1, "roughnessFactor": 0.5},
+                          "extensions": {"KHR_materials_anisotropy": )" + extension + "}}") +
+            R"(, "textures": [{"source": 0, "sampler": 0}],
+  "images": [{"uri": "stretch.png"}], "samplers": [{"magFilter": 9728, "minFilter": 9728}],
+  "extensionsUsed": ["KHR_materials_anisotropy"])";
+        RenderJob views = job("builtin:white");
+        views.frame.views = {View::anisotropy};
+        const RenderedImages images = render(b.write(dir, name, members), views, false);
+        EXPECT_EQ(images.views.size(), 1u);
+        return images.views.empty() ? Pixel{} : at(images.views[0].second, kSize / 2, kSize / 2);
+    };
+    const Pixel along = stretch_view("stretch_plain", R"({"anisotropyStrength": 0.8})");
+    EXPECT_NEAR(std::abs(along.r), 1.0f, 1e-4f);
+    EXPECT_NEAR(along.g, 0.0f, 1e-4f);
+    EXPECT_NEAR(along.a, 0.8f, 1e-6f);
+    const Pixel turned = stretch_view(
+        "stretch_textured", R"({"anisotropyStrength": 0.8, "anisotropyRotation": 1.5707963, "anisotropyTexture": {"index": 0}})");
+    // G 128 is 2 x 128/255 - 1 = 0.004, not 0: the direction is off the tangent by that much.
+    EXPECT_NEAR(std::abs(turned.r), 0.0039f, 5e-4f);
+    EXPECT_NEAR(std::abs(turned.g), 1.0f, 1e-4f);
+    EXPECT_NEAR(turned.a, 0.8f * 128.0f / 255.0f, 1e-4f);
+}
+
 // KHR_materials_unlit: base colour only, whatever lights it (a sun, the sky, a light) and
 // whatever else the material says (emission, metal): the frame and the reference mode both
 // show the base colour exactly (1e-5), where the same material lit does not (more than 5%).

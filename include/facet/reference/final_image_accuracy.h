@@ -26,6 +26,7 @@ struct FinalImageViews {
     std::span<const float> hdr, normal, position, basecolor, metallic, roughness;
     std::span<const float> clearcoat, clearcoat_normal;
     std::span<const float> iridescence;  // View::iridescence: weight, film ior, thickness (empty: no film)
+    std::span<const float> anisotropy;   // View::anisotropy: direction, strength (empty: none)
 };
 
 struct AccuracySettings {

@@ -25,6 +25,10 @@ struct TruthMaterial {
     // and thickness in nanometres over the surface (under a clear coat, whose index 1.5 is
     // then the film's outside).
     double iridescence = 0, iridescence_ior = 1.3, iridescence_thickness = 0;
+    // KHR_materials_anisotropy: the lobe stretched along anisotropy_t (its part in the
+    // surface's plane, normalised), strength `anisotropy`.
+    double anisotropy = 0;
+    Vec3 anisotropy_t{1, 0, 0};
 };
 
 // The extension's F_iridescence (Belcour and Barla 2017 as KHR_materials_iridescence defines
@@ -47,6 +51,10 @@ Vec3 thin_film_fresnel(double outside_ior, double film_ior, double cos1, double 
 //          f = kd albedo/pi + F D G / (4 n.l n.v), G Smith with Schlick-GGX.
 //  iridescence (both models): each Schlick F above (glTF: Fd and the metal's; thesis: F)
 //          mixed with thin_film_fresnel(outside, ior, v.h, thickness, its F0) by the weight.
+//  anisotropy: D anisotropic GGX, alpha_t = alpha + (1 - alpha) s^2 along t, alpha_b = alpha
+//          along b = n x t: 1 / (pi at ab ((t.h/at)^2 + (b.h/ab)^2 + (n.h)^2)^2); glTF's V the
+//          anisotropic height-correlated Smith, 0.5 / (n.l |(at t.v, ab b.v, n.v)| + n.v |(at t.l,
+//          ab b.l, n.l)|); the thesis keeps its isotropic G.
 //  clearcoat (both models, the extension's layering): f (1 - c Fc(v.h)) (n.l) + c Fc(v.h)
 //          D V of the model's specular lobe at the layer's roughness (n_c.l), Fc =
 //          Schlick(0.04, v.h), zero where l is below both n and the layer's normal n_c.

@@ -32,6 +32,7 @@ enum class TextureSlot {
     specular_color,  // RGB, sRGB
     iridescence,            // KHR_materials_iridescence: R
     iridescence_thickness,  // G
+    anisotropy,             // KHR_materials_anisotropy: RG direction, B strength
     count
 };
 
@@ -48,6 +49,7 @@ struct GpuMaterial {
     glm::vec4 clearcoat;  // KHR_materials_clearcoat: factor, roughness, normal texture scale
     glm::vec4 specular_color;  // KHR_materials_specular's colour (rgb)
     glm::vec4 iridescence;     // KHR_materials_iridescence: factor, film ior, thickness minimum, maximum (nm)
+    glm::vec4 anisotropy;      // KHR_materials_anisotropy: strength, rotation (radians)
 };
 
 struct GpuTexture {

@@ -39,6 +39,7 @@ struct ReferenceSurface {
     const Image* clearcoat = nullptr;         // View::clearcoat: weight, roughness
     const Image* clearcoat_normal = nullptr;  // View::clearcoat_normal
     const Image* iridescence = nullptr;       // View::iridescence: weight, film ior, thickness (nm)
+    const Image* anisotropy = nullptr;        // View::anisotropy: direction, strength
 };
 
 struct ReferenceStats {

@@ -108,11 +108,21 @@ struct Material {
     float iridescence_thickness_maximum = 400.0f;
     TextureRef iridescence_texture;            // linear: R
     TextureRef iridescence_thickness_texture;  // linear: G
+    // KHR_materials_anisotropy: the specular lobe stretched along a direction of the tangent
+    // frame, `anisotropy` 0 (none) .. 1, the direction turned by anisotropy_rotation (radians,
+    // counter-clockwise from the tangent); the texture's RG a direction, its B x the strength.
+    float anisotropy = 0.0f;
+    float anisotropy_rotation = 0.0f;
+    TextureRef anisotropy_texture;  // linear: RG direction, B strength
 
     // The vertex tangents serve the normal maps: the surface's, else the clear coat's.
     bool has_normal_map() const { return normal_texture.valid() || clearcoat_normal_texture.valid(); }
+    // So do an anisotropic lobe's directions.
+    bool needs_tangents() const { return has_normal_map() || anisotropy > 0.0f; }
     uint32_t tangent_uv_set() const {
-        return normal_texture.valid() ? normal_texture.uv_set : clearcoat_normal_texture.uv_set;
+        return normal_texture.valid()           ? normal_texture.uv_set
+               : clearcoat_normal_texture.valid() ? clearcoat_normal_texture.uv_set
+                                                  : anisotropy_texture.uv_set;
     }
 };
 
