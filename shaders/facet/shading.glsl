@@ -147,17 +147,18 @@ float facet_anisotropic_dg(FacetSurface s, vec3 v, vec3 l, vec3 h, float NdotV, 
     return facet_anisotropic_dg(s, v, l, h, NdotV, NdotL, punctual, mix(alpha, 1.0, s.anisotropy * s.anisotropy), alpha);
 }
 
-// The normal the environment's lookups reflect about on an anisotropic surface: bent from n
-// towards the plane of the stretch as the lobe widens (the Khronos sample viewer's bent
-// normal: mix(cross(cross(t, v), t), n, (1 - strength (1 - roughness))^4)).
-vec3 facet_anisotropic_lookup_normal(FacetSurface s, vec3 v) {
-    vec3 b = cross(s.anisotropy_t, v);
-    vec3 bent = cross(b, s.anisotropy_t);
-    float bend = 1.0 - s.anisotropy * (1.0 - s.roughness);
-    bend *= bend;
-    bend *= bend;
-    vec3 m = mix(bent, s.n, bend);
-    return dot(m, m) > 1e-12 ? normalize(m) : s.n;
+// The perceptual roughness whose isotropic lobe masks the view as the stretched one does:
+// alpha along v's azimuth, sqrt(alpha_t^2 cos^2 phi + alpha_b^2 sin^2 phi) (Smith's masking
+// of an anisotropic GGX is the isotropic one at that alpha). The glTF model's LUT read at it
+// follows the stretched lobe's albedo (the thesis' G is isotropic: its albedo is the round
+// lobe's); 1 for a view along n.
+float facet_anisotropic_view_roughness(FacetSurface s, vec3 v) {
+    float alpha = max(s.roughness * s.roughness, MIN_ALPHA);
+    float at = mix(alpha, 1.0, s.anisotropy * s.anisotropy);
+    float x = dot(s.anisotropy_t, v), y = dot(cross(s.n, s.anisotropy_t), v);
+    float r2 = x * x + y * y;
+    float a = r2 > 1e-12 ? sqrt((at * at * x * x + alpha * alpha * y * y) / r2) : alpha;
+    return sqrt(a);
 }
 
 // Puts KHR_materials_iridescence's thin film on the surface: weight 0..1, the film's index
@@ -616,11 +617,11 @@ void facet_lobe_entries(sampler2D lobe_table, uint brdf, float x, float y, out v
 FacetSpecularLookups facet_specular_lookups(FacetSurface s, vec3 v, float NdotV, float specular_levels,
                                               sampler2D lobe_table, bool fitted) {
     FacetSpecularLookups k;
-#ifdef FACET_ANISOTROPY
-    // A copy: the lookups reflect about the bent normal, at the surface's roughness (at
-    // sqrt(alpha_t alpha_b) instead the sun sky's worst group went from 16% to 21%).
-    if (s.anisotropy > 0.0) s.n = facet_anisotropic_lookup_normal(s, v);
-#endif
+    // An anisotropic surface's lookups reflect about n at its roughness: about the Khronos
+    // sample viewer's bent normal (n bent towards the stretch as the lobe widens) the sun
+    // sky's worst group was 16% (glTF) and 13% (thesis) off where along R it is 12% and 6%
+    // (3.5% and 6% with the glTF LUT read at facet_anisotropic_view_roughness); at
+    // sqrt(alpha_t alpha_b) 21%.
     vec3 R = reflect(-v, s.n);
     float lod = facet_specular_lod(s.roughness, specular_levels);
     for (int i = 0; i < 3; ++i) {
