@@ -167,7 +167,7 @@ int run_accuracy(int argc, char** argv) {
     if (!created) return fail("cannot start Vulkan: " + created.error().message);
     Context& context = *created.value();
     // Programs for materialising procedural environments (IblMeasure owns a compiler).
-    IblMeasure measure(context, 1, ShaderCompilerOptions{o.job.shader_dir});
+    IblMeasure measure(context, 1, ShaderCompilerOptions{o.job.shader_dir, o.job.shader_cache_dir});
     std::vector<Measured> results;
     for (const std::string& name : o.envs) {
         EnvironmentLoadOptions load;

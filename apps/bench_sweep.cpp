@@ -145,7 +145,7 @@ int run_sweep(const cli::Parsed& a) {
         return 1;
     }
     Context& context = *created.value();
-    IblMeasure sweep(context, runs, ShaderCompilerOptions{shader_dir_from_environment()});
+    IblMeasure sweep(context, runs, ShaderCompilerOptions{shader_dir_from_environment(), options.shader_cache});
     std::vector<Row> rows;
     auto fail = [](const std::string& message) {
         std::fprintf(stderr, "facet-bench: error: %s\n", message.c_str());

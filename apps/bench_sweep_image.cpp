@@ -77,6 +77,7 @@ Status sweep_final_image(Context& context, const test::Equirect& texels, const s
             job.model = "builtin:spheres";
             job.env = file.path.string();
             job.shader_dir = shader_dir_from_environment();
+            job.shader_cache_dir = o.shader_cache;
             job.frame.width = o.image_width;
             job.frame.height = o.image_height;
             job.frame.skybox = false;

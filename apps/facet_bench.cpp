@@ -93,8 +93,13 @@ int main(int argc, char** argv) {
         std::vector<Run> results;
         for (int r = 0; r < runs; ++r) {
             std::fprintf(stderr, "%s: %s, run %d/%d\n", program, env.c_str(), r + 1, runs);
+            // facet-bake uses the shader cache facet-bench was given (or none).
+            const std::string shader_cache = options->shader_cache.empty()
+                                                 ? std::string("--no-shader-cache")
+                                                 : "--shader-cache " + quote(options->shader_cache);
             const std::string command = quote(bake) + " " + quote(env) + " --force --out " + quote(work.string()) +
-                                        " " + a.get("--bake-args") + " > /dev/null 2> " + quote((work.string() + ".log"));
+                                        " " + shader_cache + " " + a.get("--bake-args") + " > /dev/null 2> " +
+                                        quote((work.string() + ".log"));
             const int raw = std::system(command.c_str());
             std::ifstream in(work / "bake.json");
             std::string text((std::istreambuf_iterator<char>(in)), {});

@@ -56,6 +56,7 @@ std::optional<BenchOptions> parse_bench_options(int argc, char** argv) {
         .option("--csv", "FILE", "also write the medians as CSV");
     add_render_bench_options(parser);
     add_sweep_options(parser);
+    add_shader_cache_option(parser);
     BenchOptions o;
     o.args = parser.parse(argc, argv);
     const cli::Parsed& a = o.args;
@@ -66,6 +67,7 @@ std::optional<BenchOptions> parse_bench_options(int argc, char** argv) {
     if (a.positional[0] == "render" && a.positional.size() > 1)
         throw std::invalid_argument("render takes no positional arguments (use --model and --env)");
     o.benchmark = a.positional[0];
+    o.shader_cache = shader_cache_dir(a);
     if (a.has("--runs")) o.runs = cli::parse_int(a.get("--runs"), "--runs", 1, 1000);
     return o;
 }
@@ -76,6 +78,7 @@ RenderBenchOptions parse_render_bench_options(const cli::Parsed& a) {
     job.model = a.get("--model", job.model);
     job.env = a.get("--env", job.env);
     job.shader_dir = shader_dir_from_environment();
+    job.shader_cache_dir = shader_cache_dir(a);
     if (a.has("--width")) job.frame.width = uint32_t(cli::parse_int(a.get("--width"), "--width", 1, 16384));
     if (a.has("--height")) job.frame.height = uint32_t(cli::parse_int(a.get("--height"), "--height", 1, 16384));
     if (a.has("--frames")) o.frames = cli::parse_int(a.get("--frames"), "--frames", 1, 10000);
@@ -99,6 +102,7 @@ std::optional<AccuracyOptions> parse_accuracy_options(int argc, char** argv) {
                        "box-filtered to --env-width (a power-of-two factor; default 512 here) and\n"
                        "built-in environments are computed at that width.");
     add_render_options(parser);
+    add_shader_cache_option(parser);
     parser.option("--size", "WxH", "accuracy: image size (default 1280x720; same as --width/--height)")
         .option("--pixels", "N", "accuracy: pixels the truth is computed for, spread evenly (default 4000)")
         .option("--runs", "N", "accuracy: frames timed, median (default 3)")
@@ -116,6 +120,7 @@ std::optional<AccuracyOptions> parse_accuracy_options(int argc, char** argv) {
     AccuracyOptions o;
     parse_render_options(a, o.job);
     o.job.shader_dir = shader_dir_from_environment();
+    o.job.shader_cache_dir = shader_cache_dir(a);
     if (a.has("--size")) {
         unsigned w = 0, h = 0;
         char extra;
@@ -179,6 +184,7 @@ std::vector<std::string> split_list(const std::string& list, const char* option)
 
 SweepOptions parse_sweep_options(const cli::Parsed& a) {
     SweepOptions o;
+    o.shader_cache = shader_cache_dir(a);
     if (a.has("--size")) {
         unsigned w = 0, h = 0;
         char extra;

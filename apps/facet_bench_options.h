@@ -14,6 +14,7 @@ namespace facet {
 struct BenchOptions {
     std::string benchmark;  // bake, render or sweep
     int runs = 5;           // bake: bakes per environment
+    std::string shader_cache;  // bake: passed on to facet-bake (apps/shader_cache.h); empty: none
     cli::Parsed args;       // every option, for the benchmark's own parse below
 };
 
@@ -40,6 +41,7 @@ struct SweepOptions {
     std::vector<BrdfModel> brdf_models{BrdfModel::gltf};
     uint32_t max_pixels = 4000;
     std::vector<uint32_t> reference_spp{1, 4, 16, 64};
+    std::string shader_cache;  // empty: none (apps/shader_cache.h)
 };
 // Throws std::invalid_argument naming the option.
 SweepOptions parse_sweep_options(const cli::Parsed& args);

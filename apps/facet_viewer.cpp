@@ -192,6 +192,7 @@ int run(const Options& o) {
     const Sampler nearest = std::move(*made_nearest);
     ShaderCompilerOptions compiler_options;
     compiler_options.source_dir = o.job.shader_dir;
+    compiler_options.disk_cache_dir = o.job.shader_cache_dir;
     ShaderCompiler compiler(compiler_options);
     ShaderWatch watch(o.job.shader_dir);
     controls.status = o.job.shader_dir.empty() ? "hot reload off (start with --shader-dir shaders)" : "";

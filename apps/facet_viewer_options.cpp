@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "cli.h"
+#include "shader_cache.h"
 #include <facet/render/tonemap.h>
 #include <facet/render/views.h>
 #include "render_options.h"
@@ -68,6 +69,7 @@ std::optional<ViewerOptions> parse_viewer_options(int argc, char** argv) {
                   "Keys: WASD move, mouse (left button) look, Tab fly/orbit, R reset the camera, F12 screenshot,\n"
                   "Esc quit. --frames N renders N frames and exits (with --screenshot FILE: the last one).");
     add_render_options(p);
+    add_shader_cache_option(p);
     p.option("--frames", "N", "render N frames, then exit (default: until the window closes)")
         .option("--screenshot", "FILE", "save the last frame as FILE (.png tone-mapped, .exr linear)")
         .option("--script", "CMDS", "run commands separated by ';', then exit: model M, env E, preset P,\n"
@@ -104,6 +106,7 @@ std::optional<ViewerOptions> parse_viewer_options(int argc, char** argv) {
         o.script.push_back("screenshot " + a.get("--screenshot"));
     }
     o.device = a.get("--device");
+    o.job.shader_cache_dir = shader_cache_dir(a);
     o.job.shader_dir = a.get("--shader-dir", std::getenv("FACET_SHADER_DIR") ? std::getenv("FACET_SHADER_DIR") : "");
     // The error_code overload: the throwing one throws filesystem_error (name too long,
     // no permission), which is no usage error and would escape run_program.

@@ -2,20 +2,30 @@
 
 #include <cstdlib>
 
+#include <facet/cache/directory_cache.h>
+
 namespace facet {
 
 void add_shader_cache_option(cli::Parser& parser) {
-    parser.option("--shader-cache", "DIR", "keep compiled shaders (SPIR-V) in DIR for later runs\n"
-                                           "                          (default: FACET_SHADER_CACHE; none without either)");
+    parser.option("--shader-cache", "DIR", "keep compiled shaders (SPIR-V) in DIR for later runs (default:\n"
+                                           "                          FACET_SHADER_CACHE, else $XDG_CACHE_HOME/facet/shaders)")
+        .flag("--no-shader-cache", "compile every shader; keep none");
 }
 
 std::string shader_cache_dir(const cli::Parsed& parsed) {
+    if (parsed.has("--shader-cache") && parsed.has("--no-shader-cache"))
+        throw std::invalid_argument("--shader-cache and --no-shader-cache exclude each other");
+    if (parsed.has("--no-shader-cache")) return "";
     if (parsed.has("--shader-cache")) {
         if (parsed.get("--shader-cache").empty()) throw std::invalid_argument("--shader-cache needs a directory");
         return parsed.get("--shader-cache");
     }
-    const char* env = std::getenv("FACET_SHADER_CACHE");
-    return env ? env : "";
+    if (const char* env = std::getenv("FACET_SHADER_CACHE"); env && *env) return env;
+    // The library reads no environment: the program picks the folder (XDG base directories).
+    const char* xdg = std::getenv("XDG_CACHE_HOME");
+    const char* home = std::getenv("HOME");
+    auto dir = default_cache_directory(xdg ? xdg : "", home ? home : "");
+    return dir ? dir.value() + "/shaders" : "";  // no HOME: nowhere to keep it
 }
 
 std::string shader_dir_from_environment() {

@@ -1,9 +1,11 @@
 #pragma once
-// --shader-cache DIR for facet-bake and facet-render: the shader compiler's on-disk SPIR-V
-// cache (shader/compiler.h), so a later run skips glslang. FACET_SHADER_CACHE is the
-// default; with neither, there is no cache. An entry is used only when it is whole and
-// matches its key (length and content checksum); a damaged one (a killed writer, a full
-// disk) is reported as a warning, compiled again and rewritten.
+// The programs' on-disk SPIR-V cache (shader/compiler.h): on by default, so that a later
+// run skips glslang. --shader-cache DIR chooses the directory, --no-shader-cache turns it
+// off (both: a usage error); without either, FACET_SHADER_CACHE, else the user's cache
+// directory: $XDG_CACHE_HOME/facet/shaders, else ~/.cache/facet/shaders. An entry is used
+// only when it is whole and matches its key (length and content checksum); a damaged
+// one (a killed writer, a full disk) is reported as a warning, compiled again and
+// rewritten; a directory that cannot be written is a warning, and every shader compiled.
 #include <string>
 
 #include "cli.h"
@@ -11,9 +13,9 @@
 namespace facet {
 
 void add_shader_cache_option(cli::Parser& parser);
-// The cache directory chosen by --shader-cache or FACET_SHADER_CACHE; empty: none.
+// The cache directory chosen as above; empty: none (--no-shader-cache, or no HOME).
+// Throws std::invalid_argument for both flags or an empty DIR.
 std::string shader_cache_dir(const cli::Parsed& parsed);
-
 // FACET_SHADER_DIR: read shaders from this directory instead of the embedded copies
 // (the library reads no environment variable; ShaderCompilerOptions::source_dir).
 // Empty: unset.

@@ -1,7 +1,5 @@
 #include <facet/io/environment_image.h>
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -12,6 +10,7 @@
 #include <facet/core/hash.h>
 #include "io/box_downsample.h"
 #include "io/exr_header.h"
+#include "io/image_module_loader.h"
 
 namespace facet {
 
@@ -58,12 +57,12 @@ struct RowChecker {
 };
 
 // Reads the file a band of rows at a time and hands each row to `row` (raw channels).
-Status read_bands(OIIO::ImageInput& in, const OIIO::ImageSpec& spec, const std::string& path,
-                  const std::function<std::optional<Error>(const float*, uint32_t)>& row) {
+Status read_bands(const FacetImageModule& module, FacetImageReader& in, const FacetImageSpec& spec,
+                  const std::string& path, const std::function<std::optional<Error>(const float*, uint32_t)>& row) {
     const uint32_t w = uint32_t(spec.width), h = uint32_t(spec.height);
     const bool tiled = spec.tile_width > 0;
     const uint32_t band = tiled ? uint32_t(std::max(spec.tile_height, 1)) : std::min(kBandRows, h);
-    const uint64_t row_bytes = uint64_t(w) * spec.nchannels * sizeof(float);
+    const uint64_t row_bytes = uint64_t(w) * spec.channels * sizeof(float);
     if (row_bytes * band > kMaxBandBytes)
         return Error{path + ": rows of " + std::to_string(band) + " (its tile height) at width " + std::to_string(w) +
                      " would take " + std::to_string(row_bytes * band >> 20) + " MiB to read, more than the limit of " +
@@ -71,14 +70,11 @@ Status read_bands(OIIO::ImageInput& in, const OIIO::ImageSpec& spec, const std::
     std::vector<float> buffer(size_t(row_bytes * std::min(band, h) / sizeof(float)));
     for (uint32_t y0 = 0; y0 < h; y0 += band) {
         const uint32_t y1 = std::min(h, y0 + band);
-        const int ybegin = spec.y + int(y0), yend = spec.y + int(y1);
-        const bool ok = tiled ? in.read_tiles(0, 0, spec.x, spec.x + int(w), ybegin, yend, spec.z, spec.z + 1, 0,
-                                              spec.nchannels, OIIO::TypeDesc::FLOAT, buffer.data())
-                              : in.read_scanlines(0, 0, ybegin, yend, spec.z, 0, spec.nchannels, OIIO::TypeDesc::FLOAT,
-                                                  buffer.data());
-        if (!ok) return Error{path + ": the image data is damaged or truncated: " + in.geterror()};
+        char* reason = nullptr;
+        if (!module.read_rows(&in, spec.y + int(y0), spec.y + int(y1), buffer.data(), &reason))
+            return Error{path + ": the image data is damaged or truncated: " + take_module_text(module, reason)};
         for (uint32_t y = y0; y < y1; ++y)
-            if (auto e = row(buffer.data() + size_t(y - y0) * w * spec.nchannels, y)) return *e;
+            if (auto e = row(buffer.data() + size_t(y - y0) * w * spec.channels, y)) return *e;
     }
     return Ok{};
 }
@@ -90,21 +86,25 @@ Result<EnvironmentImage> load_environment(const std::string& path, const Environ
     if (!std::filesystem::exists(path, ec)) return Error{path + ": no such file"};
     if (std::filesystem::is_directory(path, ec)) return Error{path + ": is a directory, not an image"};
     if (std::string problem = check_exr_attribute_sizes(path); !problem.empty()) return Error{path + ": " + problem};
-    // open() reads the header only: the size is known before any texel is.
-    auto in = OIIO::ImageInput::open(path);
+    auto module = image_module();
+    if (!module) return Error{path + ": " + module.error().message};
+    // Opening reads the header only: the size is known before any texel is.
+    char* reason = nullptr;
+    ImageReader in(module.value()->open_file(path.c_str(), &reason), {module.value()});
     if (!in) {
-        std::string reason = OIIO::geterror();
-        if (reason.empty()) reason = "not an image OpenImageIO can read";
-        return Error{path + ": cannot read the image: " + reason};
+        std::string text = take_module_text(*module.value(), reason);
+        if (text.empty()) text = "not an image OpenImageIO can read";
+        return Error{path + ": cannot read the image: " + text};
     }
-    const OIIO::ImageSpec spec = in->spec();
+    FacetImageSpec spec;
+    module.value()->spec(in.get(), &spec);
     if (spec.width <= 0 || spec.height <= 0) return Error{path + ": the image has zero size"};
     const uint64_t w = uint64_t(spec.width), h = uint64_t(spec.height);
     if (w > kMaxEnvironmentSide || h > kMaxEnvironmentSide || w * h > kMaxEnvironmentTexels)
         return Error{path + ": " + size_text(w, h) + " is larger than an environment may be (at most " +
                      std::to_string(kMaxEnvironmentSide) + " texels a side and " + size_text(65536, 32768) +
                      " texels in all); refused before reading it"};
-    const int channels = spec.nchannels;
+    const int channels = spec.channels;
     if (channels != 1 && channels != 3 && channels != 4)
         return Error{path + ": " + std::to_string(channels) + " channels; an environment needs 1 (grey), 3 or 4"};
     if (spec.depth > 1) return Error{path + ": a volume image (depth " + std::to_string(spec.depth) + ")"};
@@ -128,14 +128,14 @@ Result<EnvironmentImage> load_environment(const std::string& path, const Environ
     if (env.downsampled())
         box.emplace(env.source_width, env.source_height, env.width, env.height, 3, RowWeights::equirect_solid_angle,
                     [&](uint32_t y, const double* rgb) { store(y, [&](uint32_t x, int c) { return rgb[x * 3 + c]; }); });
-    Status read = read_bands(*in, spec, path, [&](const float* raw, uint32_t y) -> std::optional<Error> {
+    Status read = read_bands(*module.value(), *in, spec, path, [&](const float* raw, uint32_t y) -> std::optional<Error> {
         if (auto e = checker.convert(raw, y)) return e;
         if (box) box->add_row(checker.rgb.data());
         else store(y, [&](uint32_t x, int c) { return checker.rgb[x * 3 + c]; });
         return std::nullopt;
     });
     if (!read) return read.error();
-    in->close();
+    in.reset();
     env.sanitized_texels = checker.sanitized;
 
     Hash64 hash;

@@ -1,12 +1,12 @@
 #include <facet/io/image_io.h>
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
+#include <initializer_list>
 #include <memory>
 #include <vector>
 
 #include <facet/io/atomic_file.h>
+#include "io/image_module_loader.h"
 
 namespace facet {
 
@@ -19,17 +19,16 @@ std::string lower_extension(const std::string& path) {
     return ext;
 }
 
-Status write_with_oiio(const std::string& final_path, const std::string& path, const OIIO::ImageSpec& spec,
-                       const void* pixels) {
-    auto out = OIIO::ImageOutput::create(path);
-    if (!out) return Error{final_path + ": cannot write this format: " + OIIO::geterror()};
-    if (!out->open(path, spec)) return Error{final_path + ": cannot open for writing: " + out->geterror()};
-    if (!out->write_image(spec.format, pixels)) {
-        std::string reason = out->geterror();
-        out->close();
-        return Error{final_path + ": write failed: " + reason};
-    }
-    if (!out->close()) return Error{final_path + ": write failed: " + out->geterror()};
+// Writes `path` (a temporary name; messages name `final_path`) through the image module.
+Status write_image_file(const std::string& final_path, const std::string& path, uint32_t width, uint32_t height,
+                        uint32_t channels, FacetImagePixels pixels, const void* data,
+                        std::initializer_list<FacetImageAttribute> attributes) {
+    auto module = image_module();
+    if (!module) return Error{final_path + ": " + module.error().message};
+    char* reason = nullptr;
+    if (!module.value()->write(path.c_str(), width, height, channels, pixels, data, attributes.begin(),
+                               attributes.size(), &reason))
+        return Error{final_path + ": " + take_module_text(*module.value(), reason)};
     return Ok{};
 }
 
@@ -46,15 +45,12 @@ Status write_hdr_image(const std::string& path, uint32_t width, uint32_t height,
             std::vector<float> rgb(size_t(width) * height * 3);
             for (size_t i = 0; i < size_t(width) * height; ++i)
                 for (int c = 0; c < 3; ++c) rgb[i * 3 + c] = rgba[i * 4 + c];
-            OIIO::ImageSpec spec(int(width), int(height), 3, OIIO::TypeDesc::FLOAT);
-            return write_with_oiio(path, temp, spec, rgb.data());
+            return write_image_file(path, temp, width, height, 3, FACET_IMAGE_FLOAT, rgb.data(), {});
         }
-        OIIO::ImageSpec spec(int(width), int(height), 4, OIIO::TypeDesc::FLOAT);
-        spec.attribute("compression", "zip");
         // A fixed capture date: the same texels give the same file (reproducible bakes);
         // when and how a file was made is recorded in its .json beside it.
-        spec.attribute("DateTime", "1970:01:01 00:00:00");
-        return write_with_oiio(path, temp, spec, rgba.data());
+        return write_image_file(path, temp, width, height, 4, FACET_IMAGE_FLOAT, rgba.data(),
+                                {{"compression", "zip", 0}, {"DateTime", "1970:01:01 00:00:00", 0}});
     });
 }
 
@@ -62,10 +58,9 @@ Status write_ldr_image(const std::string& path, uint32_t width, uint32_t height,
     if (rgba.size() != size_t(width) * height * 4)
         return Error{path + ": pixel buffer does not match " + std::to_string(width) + "x" + std::to_string(height)};
     return write_atomically(path, [&](const std::string& temp) -> Status {
-        OIIO::ImageSpec spec(int(width), int(height), 4, OIIO::TypeDesc::UINT8);
         // Our texels are straight (unassociated) alpha; stop OIIO from dividing by alpha.
-        spec.attribute("oiio:UnassociatedAlpha", 1);
-        return write_with_oiio(path, temp, spec, rgba.data());
+        return write_image_file(path, temp, width, height, 4, FACET_IMAGE_UINT8, rgba.data(),
+                                {{"oiio:UnassociatedAlpha", nullptr, 1}});
     });
 }
 

@@ -1,13 +1,11 @@
 #include "io/texture_decode.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cmath>
 #include <optional>
 
 #include "io/box_downsample.h"
+#include "io/image_module_loader.h"
 
 namespace facet {
 
@@ -22,20 +20,20 @@ uint8_t to_byte(double v) { return uint8_t(std::lround(std::clamp(v, 0.0, 1.0) *
 
 Result<Rgba8Image> decode_texture_rows(const uint8_t* bytes, size_t size, const ImageHeader& header, uint32_t width,
                                        uint32_t height, bool srgb) {
-    OIIO::Filesystem::IOMemReader proxy(bytes, size);
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);  // glTF's alpha is straight, keep it so
-    // OpenImageIO 2.4's plugins take the proxy from the configuration when given one.
-    OIIO::Filesystem::IOProxy* proxy_pointer = &proxy;
-    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy_pointer);
+    auto module = image_module();
+    if (!module) return Error{"could not be decoded: " + module.error().message};
+    const FacetImageModule& decoder = *module.value();
+    // glTF's alpha is straight: the module keeps it so (oiio:UnassociatedAlpha).
     const char* name = header.format == "png" ? "texture.png" : header.format == "webp" ? "texture.webp" : "texture.jpg";
-    auto in = OIIO::ImageInput::open(name, &config, &proxy);
-    if (!in) return Error{"could not be decoded: " + OIIO::geterror()};
-    const OIIO::ImageSpec& spec = in->spec();
-    if (uint32_t(spec.width) != header.width || uint32_t(spec.height) != header.height || spec.nchannels < 1 ||
-        spec.nchannels > 4)
+    char* reason = nullptr;
+    ImageReader in(decoder.open_memory(bytes, size, name, &reason), {&decoder});
+    if (!in) return Error{"could not be decoded: " + take_module_text(decoder, reason)};
+    FacetImageSpec spec;
+    decoder.spec(in.get(), &spec);
+    if (uint32_t(spec.width) != header.width || uint32_t(spec.height) != header.height || spec.channels < 1 ||
+        spec.channels > 4)
         return Error{"could not be decoded: the decoder disagrees with the header about its size or channels"};
-    const uint32_t src_w = header.width, src_h = header.height, channels = uint32_t(spec.nchannels);
+    const uint32_t src_w = header.width, src_h = header.height, channels = uint32_t(spec.channels);
     const bool has_alpha = channels == 2 || channels == 4;
     const bool premultiplied = has_alpha && header.format == "webp";
 
@@ -67,9 +65,8 @@ Result<Rgba8Image> decode_texture_rows(const uint8_t* bytes, size_t size, const 
     std::vector<float> rgba(size_t(src_w) * 4);
     for (uint32_t y0 = 0; y0 < src_h; y0 += band) {
         const uint32_t y1 = std::min(src_h, y0 + band);
-        if (!in->read_scanlines(0, 0, spec.y + int(y0), spec.y + int(y1), 0, 0, int(channels), OIIO::TypeDesc::FLOAT,
-                                raw.data()))
-            return Error{"could not be decoded: " + in->geterror()};
+        if (!decoder.read_rows(in.get(), spec.y + int(y0), spec.y + int(y1), raw.data(), &reason))
+            return Error{"could not be decoded: " + take_module_text(decoder, reason)};
         for (uint32_t y = y0; y < y1; ++y) {
             float* r = &raw[size_t(y - y0) * src_w * channels];
             for (uint32_t x = 0; x < src_w; ++x) {
@@ -90,7 +87,7 @@ Result<Rgba8Image> decode_texture_rows(const uint8_t* bytes, size_t size, const 
             else store(y, [&](uint32_t x, uint32_t c) { return double(rgba[size_t(x) * 4 + c]); });
         }
     }
-    in->close();
+    in.reset();
     return out;
 }
 

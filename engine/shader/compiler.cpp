@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -73,7 +74,8 @@ void write_disk(const std::string& dir, uint64_t key, const std::vector<uint32_t
         if (!out) {
             std::filesystem::remove(temp, ec);
             static std::atomic<bool> warned{false};
-            if (!warned.exchange(true)) log(LogLevel::warning, dir + ": cannot write to the shader cache");
+            if (!warned.exchange(true))
+                log(LogLevel::warning, dir + ": cannot write to the shader cache; shaders are compiled on every run");
             return;
         }
     }
@@ -124,6 +126,7 @@ Result<Spirv> ShaderCompiler::compile_source(ShaderStage stage, std::string_view
                              .add(stage_name(stage))
                              .add(options_.debug_info ? "debug" : "release")
                              .add(glslang_frontend::toolchain_tag())
+                             .add("facet " FACET_VERSION)  // another Facet may compile the same text otherwise
                              .value();
     {
         std::lock_guard lock(mutex_);
@@ -137,11 +140,19 @@ Result<Spirv> ShaderCompiler::compile_source(ShaderStage stage, std::string_view
             std::lock_guard lock(mutex_);
             ++stats_.disk_hits;
             memory_cache_[key] = *words;
+            log(LogLevel::debug, std::string(name) + ": " + stage_name(stage) + " shader read from the shader cache");
             return with_reflection(std::move(*words), key, name);
         }
     }
+    const auto start = std::chrono::steady_clock::now();
     auto words = glslang_frontend::compile(library_, input);
     if (!words) return words.error();
+    // At FACET_LOG=debug one line per glslang compile: the programs' tests count them (a
+    // warm cache compiles nothing).
+    char took[32];
+    std::snprintf(took, sizeof took, "%.1f ms",
+                  std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    log(LogLevel::debug, std::string(name) + ": " + stage_name(stage) + " shader compiled by glslang in " + took);
     if (!options_.disk_cache_dir.empty()) write_disk(options_.disk_cache_dir, key, *words);
     std::lock_guard lock(mutex_);
     ++stats_.compiles;

@@ -190,6 +190,21 @@ TEST(ShaderCompiler, DiskCacheIsReusedAndDamagedEntriesRecompiled) {
     }
 }
 
+// A cache directory that cannot be made (below a file) costs a warning, never a shader.
+TEST(ShaderCompiler, UnwritableDiskCacheStillCompiles) {
+    TempDir dir;
+    std::ofstream(dir.path / "file") << "not a directory";
+    ShaderCompilerOptions options;
+    options.disk_cache_dir = (dir.path / "file" / "cache").string();
+    for (int run = 0; run < 2; ++run) {
+        ShaderCompiler compiler(options);
+        auto spirv = compiler.compile_source(ShaderStage::compute, "fill.comp", fill_source);
+        ASSERT_TRUE(spirv) << spirv.error().message;
+        EXPECT_EQ(compiler.stats().compiles, 1u);
+        EXPECT_EQ(compiler.stats().disk_hits, 0u);
+    }
+}
+
 TEST(ShaderLibraryPaths, NormalizesAndRejectsEscapes) {
     EXPECT_EQ(normalize_shader_path("a/b/../c.glsl"), "a/c.glsl");
     EXPECT_EQ(normalize_shader_path("./brdf.glsl"), "brdf.glsl");
