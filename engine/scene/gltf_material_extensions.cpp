@@ -33,6 +33,15 @@ std::string number_text(double v) {
     return text;
 }
 
+// A number member within [low, high] (`fallback` when absent): an error naming it and the
+// range, described as `range` ("[0, 1]"), when outside.
+double number_within(const tinygltf::Value& object, const char* key, double fallback, double low, double high,
+                     const char* range, const std::string& where) {
+    const double v = number(object, key, fallback, where);
+    if (v < low || v > high) fail(where + "." + key + " " + number_text(v) + " is outside " + range);
+    return v;
+}
+
 // `count` finite numbers of an array member into `out`; absent: `out` untouched.
 void numbers(const tinygltf::Value& object, const char* key, int count, double* out, const std::string& where) {
     if (!object.Has(key)) return;
@@ -118,11 +127,8 @@ void read_clearcoat(const tinygltf::Model& model, const tinygltf::Material& m, c
     const tinygltf::Value* coat = extension(m, "KHR_materials_clearcoat", where);
     if (!coat) return;
     const std::string at = where + ": KHR_materials_clearcoat";
-    const double factor = number(*coat, "clearcoatFactor", 0.0, at);
-    if (factor < 0.0 || factor > 1.0) fail(at + ".clearcoatFactor " + number_text(factor) + " is outside [0, 1]");
-    const double roughness = number(*coat, "clearcoatRoughnessFactor", 0.0, at);
-    if (roughness < 0.0 || roughness > 1.0)
-        fail(at + ".clearcoatRoughnessFactor " + number_text(roughness) + " is outside [0, 1]");
+    const double factor = number_within(*coat, "clearcoatFactor", 0.0, 0.0, 1.0, "[0, 1]", at);
+    const double roughness = number_within(*coat, "clearcoatRoughnessFactor", 0.0, 0.0, 1.0, "[0, 1]", at);
     out.clearcoat = float(factor);
     out.clearcoat_roughness = float(roughness);
     out.clearcoat_texture = texture_info(model, *coat, "clearcoatTexture", at);
@@ -139,16 +145,12 @@ void read_iridescence(const tinygltf::Model& model, const tinygltf::Material& m,
     const tinygltf::Value* film = extension(m, "KHR_materials_iridescence", where);
     if (!film) return;
     const std::string at = where + ": KHR_materials_iridescence";
-    const double factor = number(*film, "iridescenceFactor", 0.0, at);
-    if (factor < 0.0 || factor > 1.0) fail(at + ".iridescenceFactor " + number_text(factor) + " is outside [0, 1]");
+    const double factor = number_within(*film, "iridescenceFactor", 0.0, 0.0, 1.0, "[0, 1]", at);
     const double ior = number(*film, "iridescenceIor", 1.3, at);
     if (ior < 1.0) fail(at + ".iridescenceIor " + number_text(ior) + " is below 1 (an index of refraction)");
-    const double minimum = number(*film, "iridescenceThicknessMinimum", 100.0, at);
-    const double maximum = number(*film, "iridescenceThicknessMaximum", 400.0, at);
-    for (const auto& [name, value] : {std::pair{"iridescenceThicknessMinimum", minimum},
-                                      std::pair{"iridescenceThicknessMaximum", maximum}})
-        if (value < 0.0 || value > 1e6)
-            fail(at + "." + name + " " + number_text(value) + " is outside [0, 1e6] (nanometres)");
+    const char* nanometres = "[0, 1e6] (nanometres)";
+    const double minimum = number_within(*film, "iridescenceThicknessMinimum", 100.0, 0.0, 1e6, nanometres, at);
+    const double maximum = number_within(*film, "iridescenceThicknessMaximum", 400.0, 0.0, 1e6, nanometres, at);
     out.iridescence = float(factor);
     out.iridescence_ior = float(ior);
     out.iridescence_thickness_minimum = float(minimum);
@@ -162,9 +164,7 @@ void read_anisotropy(const tinygltf::Model& model, const tinygltf::Material& m, 
     const tinygltf::Value* stretch = extension(m, "KHR_materials_anisotropy", where);
     if (!stretch) return;
     const std::string at = where + ": KHR_materials_anisotropy";
-    const double strength = number(*stretch, "anisotropyStrength", 0.0, at);
-    if (strength < 0.0 || strength > 1.0)
-        fail(at + ".anisotropyStrength " + number_text(strength) + " is outside [0, 1]");
+    const double strength = number_within(*stretch, "anisotropyStrength", 0.0, 0.0, 1.0, "[0, 1]", at);
     out.anisotropy = float(strength);
     out.anisotropy_rotation = float(number(*stretch, "anisotropyRotation", 0.0, at));
     out.anisotropy_texture = texture_info(model, *stretch, "anisotropyTexture", at);
@@ -183,8 +183,7 @@ void read_dielectric_extensions(const tinygltf::Model& model, const tinygltf::Ma
     const tinygltf::Value* spec = extension(m, "KHR_materials_specular", where);
     if (!spec) return;
     const std::string at = where + ": KHR_materials_specular";
-    const double factor = number(*spec, "specularFactor", 1.0, at);
-    if (factor < 0.0 || factor > 1.0) fail(at + ".specularFactor " + number_text(factor) + " is outside [0, 1]");
+    const double factor = number_within(*spec, "specularFactor", 1.0, 0.0, 1.0, "[0, 1]", at);
     double colour[3] = {1.0, 1.0, 1.0};
     if (spec->Has("specularColorFactor")) {
         const tinygltf::Value& c = spec->Get("specularColorFactor");

@@ -402,11 +402,12 @@ void facet_lut_albedo(FacetSurface s, float NdotV, vec4 lut, out vec3 E, out vec
         float outside = facet_film_outside_ior(s);
         vec3 Fd = facet_iridescence_fresnel(outside, s.iridescence_ior, NdotV, s.iridescence_thickness,
                                             s.brdf == FACET_BRDF_GLTF ? s.dielectric_f0 : s.F0);
-        vec3 Fm = facet_iridescence_fresnel(outside, s.iridescence_ior, NdotV, s.iridescence_thickness, s.albedo);
-        vec3 d = clamp((Fd - w) / (1.0 - w), 0.0, 1.0), m = clamp((Fm - w) / (1.0 - w), 0.0, 1.0);
+        vec3 d = clamp((Fd - w) / (1.0 - w), 0.0, 1.0);
         if (s.brdf == FACET_BRDF_GLTF) {
+            vec3 Fm = facet_iridescence_fresnel(outside, s.iridescence_ior, NdotV, s.iridescence_thickness, s.albedo);
             s.dielectric_f0 = mix(s.dielectric_f0, d, s.iridescence);
-            s.albedo = mix(s.albedo, m, s.iridescence);  // the metal's F0 here (a copy: not the diffuse's)
+            // The metal's F0 here (a copy: not the diffuse's albedo).
+            s.albedo = mix(s.albedo, clamp((Fm - w) / (1.0 - w), 0.0, 1.0), s.iridescence);
         } else {
             s.F0 = mix(s.F0, d, s.iridescence);
         }

@@ -283,12 +283,12 @@ void main() {
 
     vec3 diffuse = vec3(0.0), specular = vec3(0.0);
 #ifdef USE_IBL
-    vec4 lut = facet_brdf_lut(brdf_lut, NdotV, s.roughness);
+    float lut_roughness = s.roughness;
 #ifdef FACET_ANISOTROPY
     // The stretched lobe's albedo: the glTF model's LUT at the roughness that masks v alike.
-    if (s.anisotropy > 0.0 && s.brdf == FACET_BRDF_GLTF)
-        lut = facet_brdf_lut(brdf_lut, NdotV, facet_anisotropic_view_roughness(s, v));
+    if (s.anisotropy > 0.0 && s.brdf == FACET_BRDF_GLTF) lut_roughness = facet_anisotropic_view_roughness(s, v);
 #endif
+    vec4 lut = facet_brdf_lut(brdf_lut, NdotV, lut_roughness);
     // frame.ibl.y is the highest specular level (roughness 1).
     float specular_levels = frame.ibl.y + 1.0;
 #endif
