@@ -39,6 +39,7 @@
 #include <facet/scene/material_presets.h>
 #include <facet/shader/program_cache.h>
 #include "swapchain.h"
+#include "viewer_frame_clock.h"
 #include "viewer_panels.h"
 #include "viewer_support.h"
 #include "viewer_ui.h"
@@ -209,6 +210,7 @@ int run(const Options& o) {
     // fence; screenshot frames, which export more, aside): zero while the frame keeps its
     // shape (the executor reuses the images).
     uint64_t later_allocations = 0, later_images = 0;
+    FrameClock clock;  // frames per second and the longest frame, logged at the end
     double last = glfwGetTime();
     int exit_status = 0;
     while (!glfwWindowShouldClose(window)) {
@@ -419,6 +421,7 @@ int run(const Options& o) {
         // One frame in flight: the graph's resources live until its work is done.
         check_vk(vkWaitForFences(context.device(), 1, &sync.done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
         check_vk(vkResetFences(context.device(), 1, &sync.done), "vkResetFences");
+        clock.frame_done();
         if (presented != VK_SUCCESS && presented != VK_SUBOPTIMAL_KHR && presented != VK_ERROR_OUT_OF_DATE_KHR)
             throw std::runtime_error(std::string("vkQueuePresentKHR: ") + vk_result_name(presented));
         if (frame > 0 && !capture) {
@@ -453,6 +456,7 @@ int run(const Options& o) {
     swapchain.reset();
     log("rendered " + std::to_string(frame) + " frames (after the first: " + std::to_string(later_allocations) +
         " device allocations, " + std::to_string(later_images) + " images created)");
+    log(clock.summary());
     return exit_status;
 }
 
