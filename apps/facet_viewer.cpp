@@ -243,6 +243,11 @@ int run(const Options& o) {
         while (scripted && frames_left == 0 && screenshot.empty() && step < o.script.size()) {
             const std::string& command = o.script[step];
             if (command == "wait" && loading()) break;  // frames go on until the load is done
+            // Frames go on until the requested load's bake has run a pass (tests: a choice made mid-bake).
+            if (command == "wait bake" && loading()) {
+                const SessionLoader::Progress p = loader->progress();
+                if (controls.reload || !p.latest || p.passes_done == 0) break;
+            }
             ++step;
             const std::string verb = command.substr(0, command.find(' '));
             const std::string arg = command.substr(command.find(' ') + 1);

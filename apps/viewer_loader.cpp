@@ -24,9 +24,15 @@ std::string SessionLoader::request(const RenderJob& job, const std::string& what
     std::string superseded;
     {
         std::lock_guard lock(mutex_);
-        if (next_) superseded = next_->what;
-        else if (running_) superseded = progress_.what;
-        else if (finished_) superseded = finished_->what;  // done, not yet swapped in: dropped here
+        if (next_) {
+            superseded = next_->what;
+            lines_.push_back("the load of " + superseded + " was superseded before it started");
+        } else if (running_) {
+            superseded = progress_.what;
+        } else if (finished_) {  // done, not yet swapped in: dropped here
+            superseded = finished_->what;
+            lines_.push_back("the superseded load of " + superseded + " ended before a safe point; its result is dropped");
+        }
         finished_.reset();
         next_ = Request{job, what, ++latest_};
     }
@@ -41,7 +47,10 @@ bool SessionLoader::pending() const {
 
 SessionLoader::Progress SessionLoader::progress() const {
     std::lock_guard lock(mutex_);
-    return progress_;
+    if (next_) return Progress{next_->what};  // a stale load may still be stopping: shown as not started
+    Progress p = progress_;
+    p.latest = running_ && running_generation_ == latest_;
+    return p;
 }
 
 std::vector<std::string> SessionLoader::take_lines() {
@@ -70,6 +79,7 @@ void SessionLoader::work() {
             request = std::move(*next_);
             next_.reset();
             running_ = true;
+            running_generation_ = request.generation;
             progress_ = Progress{request.what};
         }
         const uint64_t generation = request.generation;

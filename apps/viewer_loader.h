@@ -45,6 +45,7 @@ public:
         uint32_t passes_done = 0;  // of the bake (0 of 0 before it starts, and without one)
         uint32_t passes_total = 0;
         std::string last_line;     // what the load said last
+        bool latest = false;       // the load running is the latest request (not a stale one stopping)
     };
     Progress progress() const;
     // Lines the loads said since the last call: the render thread prints them (the window
@@ -74,6 +75,7 @@ private:
     std::optional<Request> next_;      // requested, not started
     uint64_t latest_ = 0;              // generation of the latest request
     bool running_ = false;             // the worker is inside a load
+    uint64_t running_generation_ = 0;  // of that load
     std::optional<Finished> finished_;
     Progress progress_;
     std::vector<std::string> lines_;
