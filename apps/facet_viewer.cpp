@@ -5,6 +5,9 @@
 // again, F12 saves a screenshot. Scripted use (CI, tests): --script runs commands,
 // --frames N / --screenshot FILE are shorthands. The swapchain image is imported into
 // each frame's render graph: the display image is copied into it, then the panels drawn.
+// Choosing another model, environment, preset or method loads and bakes on a worker
+// thread (viewer_loader.h) while the window keeps drawing the current scene; the new one
+// is swapped in between frames.
 // SIGINT and SIGTERM close the window as Esc does (exit status 128 + the signal).
 #include <chrono>
 #include <cmath>
@@ -39,6 +42,8 @@
 #include <facet/scene/material_presets.h>
 #include <facet/shader/program_cache.h>
 #include "swapchain.h"
+#include "viewer_frame_clock.h"
+#include "viewer_loader.h"
 #include "viewer_panels.h"
 #include "viewer_support.h"
 #include "viewer_ui.h"
@@ -82,10 +87,8 @@ private:
 // Where dropped files go (GLFW's drop callback takes no user data beside the window's).
 ViewerControls* dropped_into = nullptr;
 
-// A session for the controls' model, environment and preset; the old one (if any) is
-// kept when loading fails, and the error is shown.
-std::unique_ptr<RenderSession> open_session(Context& context, const RenderJob& base, ViewerControls& c,
-                                            const std::function<void(const std::string&)>& log) {
+// The job for the controls' model, environment, preset and methods.
+RenderJob job_for(const RenderJob& base, const ViewerControls& c) {
     RenderJob job = base;
     job.model = c.model;
     job.env = c.env;
@@ -95,18 +98,18 @@ std::unique_ptr<RenderSession> open_session(Context& context, const RenderJob& b
     // A saved bake (--ibl DIR) holds its own environment and methods: choosing others bakes them.
     if (c.env != base.env || c.irradiance != base.ibl.irradiance.method || c.specular != base.ibl.specular.method)
         job.ibl_dir.clear();
-    auto session = RenderSession::create(context, job, log);
-    if (!session) {
-        c.status = session.error().message;
-        return nullptr;
-    }
+    return job;
+}
+
+// The panels show what a session holds once it is in use (the material override, if any,
+// applied to it again).
+void show_session(const RenderSession& session, ViewerControls& c) {
     c.status.clear();
-    c.bake_passes = (*session)->bake_timings();
-    c.warnings = (*session)->warnings();
-    c.shading = (*session)->shading();
-    c.lights = (*session)->frame().lights;
+    c.bake_passes = session.bake_timings();
+    c.warnings = session.warnings();
+    c.shading = session.shading();
+    c.lights = session.frame().lights;
     c.material_changed = c.override_material;
-    return std::move(*session);
 }
 
 int run(const Options& o) {
@@ -158,8 +161,12 @@ int run(const Options& o) {
     RenderJob base = o.job;
     base.frame.width = swapchain->extent().width;
     base.frame.height = swapchain->extent().height;
-    std::unique_ptr<RenderSession> session = open_session(context, base, controls, log);
-    if (!session) throw std::runtime_error(controls.status);
+    // The first session before the window shows anything (there is nothing to draw meanwhile).
+    auto first = RenderSession::create(context, job_for(base, controls), log);
+    if (!first) throw std::runtime_error(first.error().message);
+    std::unique_ptr<RenderSession> session = std::move(*first);
+    std::string session_model = controls.model;
+    show_session(*session, controls);
     auto show_title = [&] {
         glfwSetWindowTitle(window, (std::string(program) + " - " + controls.model + " under " + controls.env).c_str());
     };
@@ -201,14 +208,27 @@ int run(const Options& o) {
     // One frame in flight (the fence below); the executor keeps each frame's images for
     // the next, so steady frames create no image and allocate no memory.
     GraphExecutor executor(context, 1);
+    // Later loads run here; destroyed (the load in progress stopped) before the context.
+    auto loader = std::make_unique<SessionLoader>(context);
+    // A load asked for and not yet swapped in (or failed): the script's "wait" and its
+    // screenshots wait for it, frames go on.
+    auto loading = [&] { return controls.reload || loader->pending(); };
+    struct LoadWatch {
+        double started = 0;                    // glfwGetTime() of the request
+        int frames = 0, frames_in_passes = 0;  // drawn meanwhile; of them, while the bake's passes ran
+    } load_watch;
+    bool load_failed = false;  // a scripted session then exits with status 1
     size_t step = 0;       // next script command
     int frames_left = 0;   // of the current "frames N"
     std::string screenshot;
     int frame = 0;
-    // Device allocations and images made inside frames after the first (graph build to
-    // fence; screenshot frames, which export more, aside): zero while the frame keeps its
-    // shape (the executor reuses the images).
+    // Device allocations and images made by this thread inside frames after each
+    // session's first (graph build to fence; screenshot frames, which export more, aside):
+    // zero while the frame keeps its shape (the executor reuses the images), also while a
+    // load allocates on its worker.
     uint64_t later_allocations = 0, later_images = 0;
+    int session_frame = 0;  // frames drawn with the current session
+    FrameClock clock;  // frames per second and the longest frame, logged at the end
     double last = glfwGetTime();
     int exit_status = 0;
     while (!glfwWindowShouldClose(window)) {
@@ -221,7 +241,14 @@ int run(const Options& o) {
         // Script: apply commands until one asks for frames.
         const bool scripted = !o.script.empty();
         while (scripted && frames_left == 0 && screenshot.empty() && step < o.script.size()) {
-            const std::string& command = o.script[step++];
+            const std::string& command = o.script[step];
+            if (command == "wait" && loading()) break;  // frames go on until the load is done
+            // Frames go on until the requested load's bake has run a pass (tests: a choice made mid-bake).
+            if (command == "wait bake" && loading()) {
+                const SessionLoader::Progress p = loader->progress();
+                if (controls.reload || !p.latest || p.passes_done == 0) break;
+            }
+            ++step;
             const std::string verb = command.substr(0, command.find(' '));
             const std::string arg = command.substr(command.find(' ') + 1);
             log("script: " + command);
@@ -262,20 +289,40 @@ int run(const Options& o) {
         glfwPollEvents();
         if (controls.reload) {
             controls.reload = false;
-            vkDeviceWaitIdle(context.device());
-            if (auto next = open_session(context, base, controls, log)) {
-                session = std::move(next);
-                camera.view = camera.home = session->camera();
+            const std::string what = controls.model + " under " + controls.env;
+            const std::string superseded = loader->request(job_for(base, controls), what);
+            if (!superseded.empty()) log("cancelling the load of " + superseded + ": superseded by " + what);
+            log("loading " + what + " in the background");
+            load_watch = LoadWatch{glfwGetTime()};
+            clock.start_span();
+        }
+        for (const std::string& line : loader->take_lines()) log(line);
+        if (auto finished = loader->take_finished()) {
+            // Between frames, after the last one's fence: nothing still uses the old session.
+            char timing[200];
+            std::snprintf(timing, sizeof timing,
+                          " after %.0f ms: %d frames drawn meanwhile (%d while its bake passes ran), longest frame %.1f ms",
+                          1000 * (glfwGetTime() - load_watch.started), load_watch.frames,
+                          load_watch.frames_in_passes, clock.span_longest_ms());
+            if (finished->session) {
+                session = std::move(*finished->session);
+                session_frame = 0;
+                show_session(*session, controls);
+                camera.home = session->camera();
+                // The same model keeps the user's view; another is framed.
+                if (controls.model != session_model) camera.view = camera.home;
+                session_model = controls.model;
+                log("swapped in " + finished->what + timing);
                 show_title();
-            } else if (scripted) {
-                throw std::runtime_error(controls.status);
             } else {
-                log("error: " + controls.status + " (the previous scene stays)");
+                controls.status = "error: " + finished->session.error().message + " (the previous scene stays)";
+                log(controls.status);
+                log("gave up loading " + finished->what + timing);
+                load_failed = true;
             }
         }
         if (watch.changed(glfwGetTime())) {
-            // Hot reload between frames: nothing recorded is pending after the fence.
-            vkDeviceWaitIdle(context.device());
+            // Hot reload between frames: nothing recorded is pending after the last fence.
             auto reloaded = session->reload_shaders();
             if (reloaded) reloaded = programs.reload();
             if (reloaded) {
@@ -288,7 +335,7 @@ int run(const Options& o) {
         }
         if (controls.material_changed) {
             controls.material_changed = false;
-            vkDeviceWaitIdle(context.device());
+            // Between frames: the last frame's fence was waited for.
             Status changed = controls.override_material
                                  ? session->override_materials(RenderSession::MaterialFactors{
                                        controls.albedo, controls.metallic, controls.roughness, controls.occlusion,
@@ -312,8 +359,12 @@ int run(const Options& o) {
                                                   VK_NULL_HANDLE, &index);
         VkExtent2D extent = swapchain->extent();
         if (acquired == VK_ERROR_OUT_OF_DATE_KHR || uint32_t(fb_w) != extent.width || uint32_t(fb_h) != extent.height) {
-            // A resize: the swapchain (and any image acquired from it) is replaced.
-            vkDeviceWaitIdle(context.device());
+            // A resize: the swapchain (and any image acquired from it) is replaced. The
+            // queue's lock, since a load may be submitting on its worker.
+            {
+                auto queue = context.lock_queue();
+                check_vk(vkQueueWaitIdle(context.queue()), "vkQueueWaitIdle");
+            }
             if (Status st = swapchain->recreate(uint32_t(fb_w), uint32_t(fb_h)); !st)
                 throw std::runtime_error(st.error().message);
             ui->rebuild(*swapchain);
@@ -326,6 +377,11 @@ int run(const Options& o) {
             throw std::runtime_error(std::string("vkAcquireNextImageKHR: ") + vk_result_name(acquired));
 
         ui->begin_frame();
+        controls.loading.reset();
+        if (loader->pending()) {
+            const SessionLoader::Progress p = loader->progress();
+            controls.loading = LoadShown{p.what, p.last_line, p.passes_done, p.passes_total};
+        }
         draw_panels(controls);
         FrameSettings& settings = session->frame_settings();
         settings.camera = camera.view;
@@ -336,7 +392,7 @@ int run(const Options& o) {
         settings.lights = controls.lights;
         settings.views.clear();
         if (controls.view != View::final_color) settings.views = {controls.view};
-        const AllocatorStats frame_begin = context.allocator().stats();
+        const AllocationCounts frame_begin = Allocator::made_on_this_thread();
         RenderGraph graph;
         auto images = session->add_frame_passes(graph);
         if (!images) throw std::runtime_error(images.error().message);
@@ -375,7 +431,9 @@ int run(const Options& o) {
                            VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
         });
         target = ui->add_pass(graph, target, index);
-        const bool capture = !screenshot.empty() && (frames_left <= 1);
+        // A screenshot shows the scene the script asked for: it waits for a load (frames go on).
+        const bool hold_for_screenshot = !screenshot.empty() && frames_left <= 1 && loading();
+        const bool capture = !screenshot.empty() && frames_left <= 1 && !hold_for_screenshot;
         const ResourceState readable{VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                                      VK_ACCESS_2_TRANSFER_READ_BIT};
         if (capture) {
@@ -407,7 +465,10 @@ int run(const Options& o) {
         submit.pCommandBufferInfos = &buffer;
         submit.signalSemaphoreInfoCount = 1;
         submit.pSignalSemaphoreInfos = &signal;
-        check_vk(vkQueueSubmit2(context.queue(), 1, &submit, sync.done), "vkQueueSubmit2");
+        {
+            auto queue = context.lock_queue();  // a load may be submitting on its worker
+            check_vk(vkQueueSubmit2(context.queue(), 1, &submit, sync.done), "vkQueueSubmit2");
+        }
         VkPresentInfoKHR present{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
         present.waitSemaphoreCount = 1;
         present.pWaitSemaphores = &sync.rendered;
@@ -415,14 +476,24 @@ int run(const Options& o) {
         const VkSwapchainKHR handle = swapchain->handle();
         present.pSwapchains = &handle;
         present.pImageIndices = &index;
-        const VkResult presented = vkQueuePresentKHR(context.queue(), &present);
+        VkResult presented;
+        {
+            auto queue = context.lock_queue();
+            presented = vkQueuePresentKHR(context.queue(), &present);
+        }
         // One frame in flight: the graph's resources live until its work is done.
         check_vk(vkWaitForFences(context.device(), 1, &sync.done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
         check_vk(vkResetFences(context.device(), 1, &sync.done), "vkResetFences");
+        clock.frame_done();
+        if (loader->pending()) {
+            ++load_watch.frames;
+            const SessionLoader::Progress p = loader->progress();
+            if (p.passes_done > 0 && p.passes_done < p.passes_total) ++load_watch.frames_in_passes;
+        }
         if (presented != VK_SUCCESS && presented != VK_SUBOPTIMAL_KHR && presented != VK_ERROR_OUT_OF_DATE_KHR)
             throw std::runtime_error(std::string("vkQueuePresentKHR: ") + vk_result_name(presented));
-        if (frame > 0 && !capture) {
-            const AllocatorStats frame_end = context.allocator().stats();
+        if (session_frame > 0 && !capture) {
+            const AllocationCounts frame_end = Allocator::made_on_this_thread();
             later_allocations += frame_end.allocations_made - frame_begin.allocations_made;
             later_images += frame_end.images_bound - frame_begin.images_bound;
         }
@@ -444,15 +515,25 @@ int run(const Options& o) {
         }
         // Scripts and tests wait for this: every pipeline of the frame is built by now.
         if (frame == 0) log("first frame shown");
-        if (frames_left > 0) --frames_left;
+        if (frames_left > 0 && !hold_for_screenshot) --frames_left;
         ++frame;
+        ++session_frame;
     }
-    vkDeviceWaitIdle(context.device());
+    if (loader->pending()) log("stopping the load of " + loader->progress().what + ": the window closes");
+    loader->stop();
+    for (const std::string& line : loader->take_lines()) log(line);
+    loader.reset();
+    vkDeviceWaitIdle(context.device());  // no other thread uses the device now
     executor.release();
     ui.reset();
     swapchain.reset();
     log("rendered " + std::to_string(frame) + " frames (after the first: " + std::to_string(later_allocations) +
         " device allocations, " + std::to_string(later_images) + " images created)");
+    log(clock.summary());
+    if (!o.script.empty() && load_failed && exit_status == 0) {
+        log("a model or environment the script asked for did not load (above): exit status 1");
+        exit_status = 1;
+    }
     return exit_status;
 }
 

@@ -25,6 +25,7 @@ void check_command(const std::string& command) {
     const std::string verb = command.substr(0, command.find(' '));
     const std::string arg = command.find(' ') == std::string::npos ? "" : command.substr(command.find(' ') + 1);
     auto bad = [&](const std::string& why) { throw std::invalid_argument("--script: '" + command + "': " + why); };
+    if (command == "wait" || command == "wait bake") return;  // see --script's help
     if (verb == "frames") cli::parse_int(arg, "--script frames", 1, 1000000);
     else if (verb == "view") {
         if (!parse_view(arg)) bad("unknown view (final," + view_names() + ")");
@@ -75,7 +76,10 @@ std::optional<ViewerOptions> parse_viewer_options(int argc, char** argv) {
         .option("--script", "CMDS", "run commands separated by ';', then exit: model M, env E, preset P,\n"
                                     "                          view V, size WxH, exposure E, tonemap OP, skybox on|off,\n"
                                     "                          material R,G,B,METALNESS,ROUGHNESS[,AO[,on|off textures]],\n"
-                                    "                          frames N, screenshot FILE")
+                                    "                          frames N, screenshot FILE (of the scene asked for: it\n"
+                                    "                          waits for a load), wait (frames go on until a model or\n"
+                                    "                          environment asked for is in use), wait bake (until its\n"
+                                    "                          bake has run a pass)")
         .option("--shader-dir", "DIR", "read shaders from DIR and rebuild the pipelines when a file there changes\n"
                                        "                          (hot reload; default: FACET_SHADER_DIR, else the built-in copies)")
         .option("--device", "NAME|INDEX", "Vulkan device (default: FACET_DEVICE, a GPU, else lavapipe)");

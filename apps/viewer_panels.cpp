@@ -1,5 +1,6 @@
 #include "viewer_panels.h"
 
+#include <cstdio>
 #include <cstring>
 
 #include <imgui.h>
@@ -113,6 +114,19 @@ void draw_panels(ViewerControls& c) {
     }
     ImGui::TextWrapped("irradiance error: %s", documented_bound(c.irradiance).c_str());
     ImGui::TextWrapped("specular error: %s", documented_bound(c.specular, 1024).c_str());
+    if (c.loading) {
+        // The window keeps drawing the current scene meanwhile.
+        const LoadShown& l = *c.loading;
+        ImGui::TextWrapped("loading %s", l.what.c_str());
+        char overlay[64];
+        if (l.passes_total > 0)
+            std::snprintf(overlay, sizeof overlay, "bake: %u / %u passes", l.passes_done, l.passes_total);
+        else
+            std::snprintf(overlay, sizeof overlay, "loading");
+        ImGui::ProgressBar(l.passes_total ? float(l.passes_done) / float(l.passes_total) : 0.0f, ImVec2(-1.0f, 0.0f),
+                           overlay);
+        ImGui::TextDisabled("%s", l.last_line.c_str());
+    }
     double bake_ms = 0;
     for (const PassTiming& t : c.bake_passes) bake_ms += t.time_ms;
     ImGui::Text("bake %.0f ms GPU", bake_ms);

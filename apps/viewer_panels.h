@@ -3,6 +3,7 @@
 // (preset); right, the environment, the display (exposure, tone mapping, gamma), the
 // component view, the skybox, and the frame's and the bake's pass times. The panels only
 // edit ViewerControls; the main loop applies the changes.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,12 @@
 #include <facet/scene/scene.h>
 
 namespace facet {
+
+// A load running in the background (apps/viewer_loader.h), as the panel shows it.
+struct LoadShown {
+    std::string what, last_line;
+    uint32_t passes_done = 0, passes_total = 0;  // of its bake
+};
 
 struct ViewerControls {
     std::string model, env, preset;  // preset "" = the model's own materials
@@ -38,6 +45,7 @@ struct ViewerControls {
     ShadingChoice shading;              // the shading method in use, why, and its predicted error
     double frame_ms = 0;
     std::string status;
+    std::optional<LoadShown> loading;
 };
 
 void draw_panels(ViewerControls& controls);

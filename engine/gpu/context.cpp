@@ -377,8 +377,10 @@ void Context::submit_locked(VkCommandBuffer cmd, const char* what) {
     VkResult r = take_injected_fault(FaultSite::submit);
     // An injected hang: the submission is dropped, so the fence never signals.
     const bool hang = r == VK_SUCCESS && take_injected_fault(FaultSite::hang) != VK_SUCCESS;
-    if (r == VK_SUCCESS && !hang)
+    if (r == VK_SUCCESS && !hang) {
+        std::lock_guard queue_lock(queue_mutex_);
         r = submit_hook_ ? submit_hook_(queue_, submit, fence_) : vkQueueSubmit2(queue_, 1, &submit, fence_);
+    }
     if (r == VK_ERROR_DEVICE_LOST) device_lost_ = true;
     vk_check(r, submit_hook_ ? "vkQueueSubmit2 (through the host's submit hook)" : "vkQueueSubmit2");
     // Milliseconds to nanoseconds, saturating: a limit beyond 584 years waits forever.

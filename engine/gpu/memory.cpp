@@ -11,6 +11,9 @@
 namespace facet {
 
 namespace {
+
+// Allocations made and images bound by this thread, in every allocator (made_on_this_thread).
+thread_local AllocationCounts this_thread_counts;
 // Injected per resource rather than at vkAllocateMemory, so that every resource's
 // allocation can be made to fail, not only those that open a new block.
 void fail_if_injected(VkDeviceSize size) {
@@ -91,6 +94,7 @@ Allocation Allocator::allocate_dedicated(VkDeviceSize size, uint32_t type, VkBuf
     }
     ++dedicated_count_;
     ++allocations_made_;
+    ++this_thread_counts.allocations_made;
     ++live_;
     dedicated_bytes_ += size;
     in_use_ += size;
@@ -135,6 +139,7 @@ Allocation Allocator::allocate_or_throw(const VkMemoryRequirements& requirements
             block.free_ranges.insert(block.free_ranges.begin() + r, pieces.begin(), pieces.end());
             ++block.live;
             ++allocations_made_;
+            ++this_thread_counts.allocations_made;
             ++live_;
             in_use_ += size;
             Allocation a;
@@ -227,6 +232,7 @@ Allocation Allocator::bind_or_throw(VkImage image, MemoryUsage usage) {
     }
     std::lock_guard lock(mutex_);
     ++images_bound_;
+    ++this_thread_counts.images_bound;
     return a;
 }
 
@@ -285,6 +291,8 @@ Status Allocator::invalidate(const Allocation& a) {
         return Error{VulkanError(r, "vkInvalidateMappedMemoryRanges").what(), r};
     return Ok{};
 }
+
+AllocationCounts Allocator::made_on_this_thread() { return this_thread_counts; }
 
 AllocatorStats Allocator::stats() const {
     std::lock_guard lock(mutex_);

@@ -2,7 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <list>
+#include <mutex>
 #include <optional>
+#include <unordered_map>
+
+#include <facet/core/hash.h>
 
 #include "io/box_downsample.h"
 #include "io/image_module_loader.h"
@@ -90,5 +95,99 @@ Result<Rgba8Image> decode_texture_rows(const uint8_t* bytes, size_t size, const 
     in.reset();
     return out;
 }
+
+namespace {
+
+struct DecodeKey {
+    uint64_t content_hash = 0, size = 0;
+    TextureDecodeSettings settings;
+    bool operator==(const DecodeKey& o) const {
+        return content_hash == o.content_hash && size == o.size && settings.width == o.settings.width &&
+               settings.height == o.settings.height && settings.srgb == o.settings.srgb &&
+               settings.decoder == o.settings.decoder;
+    }
+};
+
+struct DecodeKeyHash {
+    size_t operator()(const DecodeKey& k) const {
+        Hash64 h;
+        h.add(&k.content_hash, sizeof k.content_hash).add(&k.size, sizeof k.size);
+        h.add(&k.settings.width, sizeof k.settings.width).add(&k.settings.height, sizeof k.settings.height);
+        const uint32_t rest[2] = {k.settings.srgb ? 1u : 0u, k.settings.decoder};
+        return size_t(h.add(rest, sizeof rest).value());
+    }
+};
+
+class DecodeCache {
+public:
+    std::optional<Rgba8Image> find(const DecodeKey& key) {
+        std::lock_guard lock(mutex_);
+        auto it = index_.find(key);
+        if (it == index_.end()) return std::nullopt;
+        ++stats_.hits;
+        order_.splice(order_.begin(), order_, it->second);  // most recently used first
+        return it->second->image;
+    }
+    void keep(const DecodeKey& key, const Rgba8Image& image) {
+        std::lock_guard lock(mutex_);
+        ++stats_.decodes;
+        const uint64_t bytes = image.rgba.size();
+        if (bytes > stats_.capacity_bytes / 8 || index_.count(key)) return;
+        order_.push_front({key, image});
+        index_[key] = order_.begin();
+        stats_.bytes_kept += bytes;
+        evict_to(stats_.capacity_bytes);
+    }
+    void set_capacity(uint64_t bytes) {
+        std::lock_guard lock(mutex_);
+        stats_.capacity_bytes = bytes;
+        evict_to(bytes);
+    }
+    TextureCacheStats stats() const {
+        std::lock_guard lock(mutex_);
+        return stats_;
+    }
+
+private:
+    struct Entry {
+        DecodeKey key;
+        Rgba8Image image;
+    };
+    void evict_to(uint64_t bytes) {
+        while (stats_.bytes_kept > bytes && !order_.empty()) {
+            stats_.bytes_kept -= order_.back().image.rgba.size();
+            index_.erase(order_.back().key);
+            order_.pop_back();
+            ++stats_.evictions;
+        }
+    }
+    mutable std::mutex mutex_;
+    std::list<Entry> order_;
+    std::unordered_map<DecodeKey, std::list<Entry>::iterator, DecodeKeyHash> index_;
+    TextureCacheStats stats_{0, 0, 0, 0, 256ull << 20};
+};
+
+DecodeCache& decode_cache() {
+    static DecodeCache cache;
+    return cache;
+}
+
+}  // namespace
+
+Rgba8Image decode_texture_cached(std::span<const uint8_t> bytes, const TextureDecodeSettings& settings,
+                                 const std::function<Rgba8Image()>& decode) {
+    DecodeKey key;
+    key.content_hash = Hash64().add(bytes.data(), bytes.size()).value();
+    key.size = bytes.size();
+    key.settings = settings;
+    if (auto kept = decode_cache().find(key)) return std::move(*kept);
+    Rgba8Image image = decode();
+    decode_cache().keep(key, image);
+    return image;
+}
+
+TextureCacheStats texture_cache_stats() { return decode_cache().stats(); }
+
+void set_texture_cache_capacity(uint64_t bytes) { decode_cache().set_capacity(bytes); }
 
 }  // namespace facet

@@ -40,6 +40,24 @@ size_t RenderSession::pipeline_variants() const { return state_->renderer->pipel
 
 Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, const RenderJob& job,
                                                              const ProgressFn& progress) {
+    return create(context, job, Callbacks{progress, {}, {}});
+}
+
+Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, const RenderJob& job, Scene scene,
+                                                             const ProgressFn& progress) {
+    return create(context, job, std::move(scene), Callbacks{progress, {}, {}});
+}
+
+namespace {
+
+// A safe point between the loading steps (the bake has its own inside it).
+bool session_stopped(const RenderSession::Callbacks& cb, const char* point) { return cb.stop && cb.stop(point); }
+
+}  // namespace
+
+Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, const RenderJob& job,
+                                                             const Callbacks& cb) {
+    const ProgressFn& progress = cb.progress;
     std::optional<MaterialPreset> preset;
     if (job.preset) {
         preset = find_material_preset(*job.preset);
@@ -54,7 +72,8 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
         progress("loaded " + job.model + ": " + std::to_string(scene->instances.size()) + " draws, " +
                  std::to_string(scene->indices.size() / 3) + " triangles, " + std::to_string(scene->materials.size()) +
                  " materials, " + std::to_string(scene->images.size()) + " textures");
-    return create(context, job, std::move(scene).value(), progress);
+    if (session_stopped(cb, "model")) return Error{kBakeCancelled};
+    return create(context, job, std::move(scene).value(), cb);
 }
 
 namespace {
@@ -63,7 +82,8 @@ namespace {
 // for this bake key (baked and saved into it on a miss), else a fresh bake.
 // `baked_here`: set when the bake ran in this call (it then said what it extracted).
 Result<BakedEnvironment> bake_for_session(Context& context, RenderSession::State& s,
-                                          const std::function<void(const std::string&)>& say, bool& baked_here) {
+                                          const std::function<void(const std::string&)>& say,
+                                          const RenderSession::Callbacks& cb, bool& baked_here) {
     const RenderJob& job = s.job;
     baked_here = false;
     if (!job.ibl_dir.empty()) {
@@ -80,7 +100,9 @@ Result<BakedEnvironment> bake_for_session(Context& context, RenderSession::State
     callbacks.progress = say;
     callbacks.pass_done = [&](uint32_t done, uint32_t total, const std::string& pass) {
         say("baking [" + std::to_string(done) + "/" + std::to_string(total) + "] " + pass);
+        if (cb.bake_pass_done) cb.bake_pass_done(done, total, pass);
     };
+    callbacks.stop = cb.stop;
     auto bake = [&]() -> Result<BakedEnvironment> {
         say("baking " + job.env + " (" + std::to_string(s.env->width) + "x" + std::to_string(s.env->height) + ")");
         baked_here = true;
@@ -126,7 +148,8 @@ Result<BakedEnvironment> bake_for_session(Context& context, RenderSession::State
 }  // namespace
 
 Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, const RenderJob& requested,
-                                                             Scene scene, const ProgressFn& progress) {
+                                                             Scene scene, const Callbacks& cb) {
+    const ProgressFn& progress = cb.progress;
     if (!(requested.target_error > 0 && requested.target_error < 1))
         return Error{"target error " + std::to_string(requested.target_error) +
                      " is outside (0, 1): it is a fraction of the exact value (0.03 = 3%)"};
@@ -186,10 +209,11 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
         // them, and the reference mode integrates the whole environment, lights included.
         if (Status st = materialize_environment(context, *s->programs, *s->env); !st) return st.error();
         if (job.extract_lights) s->original_texels = s->env->image.rgba;
+        if (session_stopped(cb, "environment")) return Error{kBakeCancelled};
     }
     if (saved_bake || job.env != "none") {
         bool baked_here = false;
-        auto baked = bake_for_session(context, *s, say, baked_here);
+        auto baked = bake_for_session(context, *s, say, cb, baked_here);
         if (!baked) return baked.error();
         s->baked = std::move(baked).value();
         const BakeMetadata& m = s->baked->metadata();
@@ -208,6 +232,7 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
                     std::to_string(int(std::lround(100 * m.extracted_power_fraction))) + "% of its power");
             for (const std::string& note : m.extraction_notes) say("light extraction: " + note);
         }
+        if (session_stopped(cb, "shading")) return Error{kBakeCancelled};
         if (Status chosen = choose_session_shading(*s, say); !chosen) return chosen.error();
         for (const std::string& note : m.format_notes) say(note);
         s->ibl_settings = m.settings;
@@ -215,6 +240,7 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
         for (const std::string& w : s->warnings) say("warning: " + w);
         s->bake_timings = m.timings;
     }
+    if (session_stopped(cb, "scene")) return Error{kBakeCancelled};
     auto gpu_scene = GpuScene::create(context, s->scene);
     if (!gpu_scene) return gpu_scene.error();
     s->gpu_scene = std::move(*gpu_scene);

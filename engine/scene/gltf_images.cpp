@@ -138,18 +138,24 @@ TextureImage decode_image(const tinygltf::Model& model, size_t index, const Enco
                           const ImagePlan& plan) {
     const std::string where = "image '" + plan.name + "'";
     const std::span<const uint8_t> bytes = image_bytes(model, index, encoded, where);
-    TextureImage out;
-    if (decoded_row_by_row(plan)) {
-        auto decoded = decode_texture_rows(bytes.data(), bytes.size(), plan.header, plan.width, plan.height, plan.srgb);
-        if (!decoded) fail(where + " " + decoded.error().message);
-        out.width = decoded->width;
-        out.height = decoded->height;
-        out.rgba = std::move(decoded->rgba);
-    } else {
-        out = decode_whole(bytes, index, where);
-        if (out.width != plan.header.width || out.height != plan.header.height)
+    // The same bytes decoded the same way before (this model loaded again): kept by content.
+    const bool rows = decoded_row_by_row(plan);
+    const TextureDecodeSettings settings{plan.width, plan.height, plan.srgb, rows ? 1u : 0u};
+    Rgba8Image decoded = decode_texture_cached(bytes, settings, [&]() -> Rgba8Image {
+        if (rows) {
+            auto image = decode_texture_rows(bytes.data(), bytes.size(), plan.header, plan.width, plan.height, plan.srgb);
+            if (!image) fail(where + " " + image.error().message);
+            return std::move(image).value();
+        }
+        TextureImage whole = decode_whole(bytes, index, where);
+        if (whole.width != plan.header.width || whole.height != plan.header.height)
             fail(where + " could not be decoded: the decoder disagrees with the header about its size");
-    }
+        return Rgba8Image{whole.width, whole.height, std::move(whole.rgba)};
+    });
+    TextureImage out;
+    out.width = decoded.width;
+    out.height = decoded.height;
+    out.rgba = std::move(decoded.rgba);
     out.name = plan.name;
     out.source_width = plan.header.width;
     out.source_height = plan.header.height;

@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -36,6 +37,30 @@ std::vector<float> pixels(const std::string& path, int* w, int* h) {
     std::vector<float> v(size_t(*w) * *h * in->spec().nchannels);
     in->read_image(0, 0, 0, in->spec().nchannels, OIIO::TypeDesc::FLOAT, v.data());
     return v;
+}
+
+// "rendered N frames" at the viewer's exit; -1 without it.
+int frames_rendered(const std::string& log) {
+    const size_t at = log.find("rendered ");
+    return at == std::string::npos ? -1 : std::atoi(log.c_str() + at + 9);
+}
+
+size_t count(const std::string& text, const std::string& part) {
+    size_t n = 0;
+    for (size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+    return n;
+}
+
+// Mean absolute difference of two images in 8-bit levels; a large value when either is
+// missing or their sizes differ.
+double mean_difference(const std::string& a_path, const std::string& b_path) {
+    int w1 = 0, h1 = 0, w2 = 0, h2 = 0;
+    const auto a = pixels(a_path, &w1, &h1);
+    const auto b = pixels(b_path, &w2, &h2);
+    if (a.empty() || a.size() != b.size()) return 1e9;
+    double diff = 0;
+    for (size_t i = 0; i < a.size(); ++i) diff += std::abs(a[i] - b[i]);
+    return diff / double(a.size()) * 255.0;
 }
 
 struct TempDir {
@@ -89,13 +114,15 @@ TEST(FacetViewer, ScreenshotMatchesFacetRender) {
 TEST(FacetViewer, ScriptedSessionSwitchesEverything) {
     TempDir dir;
     const std::string shot = (dir.path / "switched.png").string();
+    // Loads run in the background while frames go on: "wait" holds the script until each is in use.
     Ran r = run(viewer_command() + " --model builtin:spheres --env builtin:sky --env-width 128 --width 160 --height 120 "
-                         "--script 'frames 1; model builtin:sphere; frames 1; env builtin:white; frames 1; view D; "
-                         "frames 1; view specular; size 200x150; frames 2; screenshot " + shot +
-                "; preset gold; view final; env builtin:sky; frames 1; skybox off; tonemap aces; frames 1'");
+                         "--script 'frames 1; model builtin:sphere; wait; frames 1; env builtin:white; wait; frames 1; "
+                         "view D; frames 1; view specular; size 200x150; frames 2; screenshot " + shot +
+                "; preset gold; view final; env builtin:sky; wait; frames 1; skybox off; tonemap aces; frames 1'");
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_EQ(r.output.find("Validation"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("rendered 8 frames"), std::string::npos) << r.output;
+    EXPECT_GE(frames_rendered(r.output), 8) << r.output;
+    EXPECT_EQ(count(r.output, "swapped in "), 3) << r.output;
     int w = 0, h = 0;
     const auto p = pixels(shot, &w, &h);
     EXPECT_EQ(w, 200);
@@ -103,6 +130,80 @@ TEST(FacetViewer, ScriptedSessionSwitchesEverything) {
     Ran bad = run(std::string(FACET_VIEWER_PATH) + " --script 'view sparkle'");
     EXPECT_EQ(bad.status, 2);
     EXPECT_NE(bad.output.find("unknown view"), std::string::npos) << bad.output;
+}
+
+// Issue 15, a viewer that never freezes: another environment loads and bakes on a worker
+// thread while the window keeps drawing the old one (frames counted while the load ran,
+// and the steady frames still allocate nothing); the new one is swapped in between frames
+// and matches facet-render. No bake cache, so that the load really bakes.
+TEST(FacetViewer, EnvironmentSwitchBakesWhileFramesGoOn) {
+    TempDir dir;
+    const std::string common = "--model builtin:spheres --env-width 512 --width 160 --height 120";
+    const std::string shot = (dir.path / "switched.png").string();
+    Ran shown = run(viewer_command() + " " + common + " --env none --no-bake-cache --script 'frames 2; env builtin:sky; "
+                    "wait; frames 2; screenshot " + shot + "'");
+    ASSERT_EQ(shown.status, 0) << shown.output;
+    EXPECT_EQ(shown.output.find("Validation"), std::string::npos) << shown.output;
+    const size_t swapped = shown.output.find("swapped in builtin:spheres under builtin:sky after ");
+    ASSERT_NE(swapped, std::string::npos) << shown.output;
+    const size_t meanwhile = shown.output.find("ms: ", swapped);
+    ASSERT_NE(meanwhile, std::string::npos) << shown.output;
+    EXPECT_GT(std::atoi(shown.output.c_str() + meanwhile + 4), 0) << "frames drawn while the load ran\n" << shown.output;
+    // The render thread allocated nothing in its steady frames while the worker baked.
+    EXPECT_NE(shown.output.find("(after the first: 0 device allocations, 0 images created)"), std::string::npos)
+        << shown.output;
+    Ran rendered = run(std::string(FACET_RENDER_PATH) + " " + common + " --env builtin:sky --out " +
+                       (dir.path / "render.png").string());
+    ASSERT_EQ(rendered.status, 0) << rendered.output;
+    EXPECT_LT(mean_difference(shot, (dir.path / "render.png").string()), 0.5);
+}
+
+// Choosing another environment while one bakes ("wait bake": its bake has run a pass)
+// stops the stale bake at its next safe point (or drops its result when it ended first,
+// as on a fast GPU); the second one is what is shown.
+TEST(FacetViewer, SecondSwitchCancelsTheFirst) {
+    TempDir dir;
+    const std::string common = "--model builtin:spheres --env-width 256 --width 160 --height 120";
+    const std::string shot = (dir.path / "second.png").string();
+    Ran shown = run(viewer_command() + " " + common + " --env none --no-bake-cache --script 'frames 1; env builtin:sky; "
+                    "wait bake; env builtin:white; wait; frames 1; screenshot " + shot + "'");
+    ASSERT_EQ(shown.status, 0) << shown.output;
+    EXPECT_EQ(shown.output.find("Validation"), std::string::npos) << shown.output;
+    EXPECT_NE(shown.output.find("cancelling the load of builtin:spheres under builtin:sky: superseded by "
+                                "builtin:spheres under builtin:white"),
+              std::string::npos)
+        << shown.output;
+    // Where it stopped depends on the machine's speed: mid-bake here, at once on a fast GPU.
+    EXPECT_TRUE(shown.output.find("stopped the load of builtin:spheres under builtin:sky at its safe point") !=
+                    std::string::npos ||
+                shown.output.find("the superseded load of builtin:spheres under builtin:sky ended") != std::string::npos ||
+                shown.output.find("the load of builtin:spheres under builtin:sky was superseded before it started") !=
+                    std::string::npos)
+        << shown.output;
+    EXPECT_EQ(shown.output.find("swapped in builtin:spheres under builtin:sky"), std::string::npos) << shown.output;
+    EXPECT_EQ(count(shown.output, "swapped in builtin:spheres under builtin:white"), 1u) << shown.output;
+    Ran rendered = run(std::string(FACET_RENDER_PATH) + " " + common + " --env builtin:white --out " +
+                       (dir.path / "render.png").string());
+    ASSERT_EQ(rendered.status, 0) << rendered.output;
+    EXPECT_LT(mean_difference(shot, (dir.path / "render.png").string()), 0.5);
+}
+
+// A bad environment file mid-session: the error is shown, the old environment stays (the
+// frames after it are the frames before), and a script that asked for it exits with 1.
+TEST(FacetViewer, BadEnvironmentMidSessionKeepsTheOldOne) {
+    TempDir dir;
+    const std::string bad = (dir.path / "bad.hdr").string();
+    std::ofstream(bad) << "this is no image";
+    auto shot = [&](const char* name) { return (dir.path / name).string(); };
+    Ran shown = run(viewer_command() + " --model builtin:sphere --env builtin:sky --env-width 128 --width 120 "
+                    "--height 90 --script 'frames 1; screenshot " + shot("before.png") + "; env " + bad +
+                    "; wait; frames 2; screenshot " + shot("after.png") + "'");
+    EXPECT_EQ(shown.status, 1) << shown.output;
+    EXPECT_EQ(shown.output.find("Validation"), std::string::npos) << shown.output;
+    EXPECT_NE(shown.output.find("bad.hdr"), std::string::npos) << shown.output;
+    EXPECT_NE(shown.output.find("(the previous scene stays)"), std::string::npos) << shown.output;
+    EXPECT_EQ(shown.output.find("swapped in"), std::string::npos) << shown.output;
+    EXPECT_LT(mean_difference(shot("before.png"), shot("after.png")), 0.01);
 }
 
 // The material sliders, scripted: gold's factors on the white sphere give facet-render's

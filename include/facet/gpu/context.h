@@ -153,6 +153,15 @@ public:
     // Submits an already recorded command buffer and waits for it, as above.
     Status submit_and_wait(VkCommandBuffer cmd, const char* what = "a submitted command buffer");
 
+    // For a program that submits or presents on queue() itself while Facet may submit
+    // from another thread (a viewer baking on a worker): Vulkan requires host access to a
+    // queue to be externally synchronised, and this is the lock Facet's own submissions
+    // hold around vkQueueSubmit2 (only around the call: their fence waits run unlocked, so
+    // a long bake pass on another thread does not block the holder). Hold it for each
+    // vkQueueSubmit2, vkQueuePresentKHR and vkQueueWaitIdle on queue(), and for
+    // vkDeviceWaitIdle. Not for an adopted device: the host's own submit hook serialises.
+    [[nodiscard]] std::unique_lock<std::mutex> lock_queue() { return std::unique_lock(queue_mutex_); }
+
     PFN_vkCmdPushDescriptorSetKHR cmd_push_descriptor_set = nullptr;
     PFN_vkCmdBeginDebugUtilsLabelEXT cmd_begin_label = nullptr;
     PFN_vkCmdEndDebugUtilsLabelEXT cmd_end_label = nullptr;
@@ -184,7 +193,8 @@ private:
     std::atomic<bool> timed_out_{false};
     uint64_t fence_timeout_ms_ = 60'000;
     std::function<VkResult(VkQueue, const VkSubmitInfo2&, VkFence)> submit_hook_;
-    std::mutex submit_mutex_;  // one-shot pool and fence are shared
+    std::mutex submit_mutex_;  // one-shot pool and fence are shared (held from recording to the fence)
+    std::mutex queue_mutex_;   // the queue itself (held around vkQueueSubmit2 only): lock_queue()
 };
 
 }  // namespace facet

@@ -44,6 +44,12 @@ struct AllocatorStats {
     uint64_t images_bound = 0;      // images given memory (one per VkImage Facet creates)
 };
 
+// Running totals of one thread (Allocator::made_on_this_thread).
+struct AllocationCounts {
+    uint64_t allocations_made = 0;
+    uint64_t images_bound = 0;
+};
+
 class Allocator {
 public:
     static constexpr VkDeviceSize block_size = 64ull << 20;
@@ -67,6 +73,10 @@ public:
     Status invalidate(const Allocation& allocation);
 
     AllocatorStats stats() const;
+    // What the calling thread allocated, in every allocator of the process: a render
+    // thread checks that its steady frames allocate nothing while another thread loads
+    // and bakes on the same device (the viewer).
+    static AllocationCounts made_on_this_thread();
 
 private:
     struct Range {

@@ -14,6 +14,7 @@
 
 #include <facet/core/result.h>
 #include <facet/graph/graph_run.h>
+#include <facet/ibl/bake_settings.h>
 #include <facet/ibl/ibl_bake.h>
 #include <facet/render/forward_renderer.h>
 #include <facet/render/reference_renderer.h>
@@ -82,11 +83,27 @@ using ProgressFn = std::function<void(const std::string& line)>;
 // failures); no exception leaves it.
 class RenderSession {
 public:
+    // What creating a session reports, and where its caller may stop it (a viewer loading
+    // on a worker thread while it draws the previous session): progress lines, the
+    // bake's passes as they finish, and `stop`, asked at the bake's safe points
+    // (ibl/bake_settings.h) and between the loading steps ("model", "environment",
+    // "shading", "scene"). A stopped creation frees what it made and returns an Error for
+    // which is_cancelled() is true. A saved bake (RenderJob::ibl_dir) loads unstopped.
+    struct Callbacks {
+        ProgressFn progress;
+        BakePassFn bake_pass_done;
+        BakeStopFn stop;
+    };
+
     static Result<std::unique_ptr<RenderSession>> create(Context& context, const RenderJob& job,
                                                          const ProgressFn& progress = {});
+    static Result<std::unique_ptr<RenderSession>> create(Context& context, const RenderJob& job,
+                                                         const Callbacks& callbacks);
     // The same with a scene built by the caller (job.model and job.preset are ignored).
     static Result<std::unique_ptr<RenderSession>> create(Context& context, const RenderJob& job, Scene scene,
                                                          const ProgressFn& progress = {});
+    static Result<std::unique_ptr<RenderSession>> create(Context& context, const RenderJob& job, Scene scene,
+                                                         const Callbacks& callbacks);
     ~RenderSession();
 
     // Draws one frame with the job's settings and reads every image back. With
