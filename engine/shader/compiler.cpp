@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -83,6 +84,51 @@ void write_disk(const std::string& dir, uint64_t key, const std::vector<uint32_t
     if (ec) std::filesystem::remove(temp, ec);
 }
 
+// Keeps the cache directory within `max_bytes` (ShaderCompilerOptions::disk_cache_max_bytes):
+// the oldest entries by modification time (reads refresh it) go first, down to 3/4 of the
+// bound so that a full cache is not scanned at every compile. Another process may remove or
+// add entries meanwhile: every failure here is ignored (a missing entry is compiled again).
+void bound_disk_cache(const std::string& dir, uint64_t max_bytes) {
+    if (max_bytes == 0) return;
+    namespace fs = std::filesystem;
+    struct Entry {
+        fs::path path;
+        fs::file_time_type time;
+        uint64_t bytes;
+    };
+    std::vector<Entry> entries;
+    uint64_t total = 0;
+    std::error_code ec;
+    const auto now = fs::file_time_type::clock::now();
+    for (auto it = fs::directory_iterator(dir, ec); !ec && it != fs::directory_iterator(); it.increment(ec)) {
+        std::error_code e;
+        if (!it->is_regular_file(e)) continue;
+        const std::string name = it->path().filename().string();
+        const auto time = it->last_write_time(e);
+        if (e) continue;
+        if (name.find(".spv.partial-") != std::string::npos) {
+            if (now - time > std::chrono::hours(1)) fs::remove(it->path(), e);  // a killed writer's
+            continue;
+        }
+        if (name.size() != 20 || name.substr(16) != ".spv") continue;  // only our entries
+        const uint64_t bytes = it->file_size(e);
+        if (e) continue;
+        entries.push_back({it->path(), time, bytes});
+        total += bytes;
+    }
+    if (total <= max_bytes) return;
+    std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.time < b.time; });
+    size_t removed = 0;
+    for (const Entry& e : entries) {
+        if (total <= max_bytes / 4 * 3) break;
+        std::error_code rc;
+        if (fs::remove(e.path, rc)) ++removed;
+        total -= e.bytes;
+    }
+    log(LogLevel::debug, dir + ": shader cache over " + std::to_string(max_bytes >> 10) + " KiB: removed " +
+                             std::to_string(removed) + " least recently used entries");
+}
+
 Result<Spirv> with_reflection(std::vector<uint32_t> words, uint64_t key, std::string_view name) {
     auto reflection = reflect_spirv(words, name);
     if (!reflection) return reflection.error();
@@ -136,7 +182,11 @@ Result<Spirv> ShaderCompiler::compile_source(ShaderStage stage, std::string_view
         }
     }
     if (!options_.disk_cache_dir.empty()) {
-        if (auto words = read_disk(disk_path(options_.disk_cache_dir, key), key)) {
+        const std::string path = disk_path(options_.disk_cache_dir, key);
+        if (auto words = read_disk(path, key)) {
+            // Used now: the cache's bound removes the least recently used entries first.
+            std::error_code ec;
+            std::filesystem::last_write_time(path, std::filesystem::file_time_type::clock::now(), ec);
             std::lock_guard lock(mutex_);
             ++stats_.disk_hits;
             memory_cache_[key] = *words;
@@ -153,7 +203,10 @@ Result<Spirv> ShaderCompiler::compile_source(ShaderStage stage, std::string_view
     std::snprintf(took, sizeof took, "%.1f ms",
                   std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     log(LogLevel::debug, std::string(name) + ": " + stage_name(stage) + " shader compiled by glslang in " + took);
-    if (!options_.disk_cache_dir.empty()) write_disk(options_.disk_cache_dir, key, *words);
+    if (!options_.disk_cache_dir.empty()) {
+        write_disk(options_.disk_cache_dir, key, *words);
+        bound_disk_cache(options_.disk_cache_dir, options_.disk_cache_max_bytes);
+    }
     std::lock_guard lock(mutex_);
     ++stats_.compiles;
     memory_cache_[key] = *words;

@@ -1,12 +1,15 @@
 // Run-time GLSL compilation: includes, defines, error messages, caches. No GPU needed.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 
 #include <unistd.h>
 
+#include <facet/core/hash.h>
 #include <facet/shader/compiler.h>
 
 namespace facet {
@@ -188,6 +191,66 @@ TEST(ShaderCompiler, DiskCacheIsReusedAndDamagedEntriesRecompiled) {
         EXPECT_EQ(compiler.stats().compiles, 1u);
         EXPECT_EQ(spirv->words, original.words);
     }
+}
+
+// The on-disk cache stays within its bound: the least recently used entries go (a read
+// counts as a use), a killed writer's old leftover goes, other files stay.
+TEST(ShaderCompiler, DiskCacheKeepsItsBoundLeastRecentlyUsedFirst) {
+    TempDir cache;
+    ShaderCompilerOptions options;
+    options.disk_cache_dir = cache.path.string();
+    auto entry = [&](const Spirv& spirv) {
+        Hash64 h;
+        h.state = spirv.key;
+        return cache.path / (h.hex() + ".spv");
+    };
+    auto compile = [](ShaderCompiler& compiler, int i) {
+        const ShaderDefine scale{"SCALE", std::to_string(i) + ".0"};
+        auto spirv = compiler.compile_source(ShaderStage::compute, "fill.comp", fill_source, std::span(&scale, 1));
+        EXPECT_TRUE(spirv);
+        return spirv ? *spirv : Spirv{};
+    };
+    std::vector<Spirv> made;
+    uint64_t largest = 0;
+    const auto now = fs::file_time_type::clock::now();
+    {
+        ShaderCompiler compiler(options);
+        for (int i = 0; i < 6; ++i) {
+            made.push_back(compile(compiler, i));
+            ASSERT_TRUE(fs::exists(entry(made.back())));
+            largest = std::max<uint64_t>(largest, fs::file_size(entry(made.back())));
+            // Entry i last used 60 - i minutes ago (0 the oldest).
+            fs::last_write_time(entry(made.back()), now - std::chrono::minutes(60 - i));
+        }
+    }
+    std::ofstream(cache.path / "notes.txt") << "not an entry";
+    const fs::path leftover = cache.path / "0123456789abcdef.spv.partial-1-0";
+    std::ofstream(leftover) << "half";
+    fs::last_write_time(leftover, now - std::chrono::hours(2));
+    const fs::path fresh_leftover = cache.path / "0123456789abcdef.spv.partial-2-0";
+    std::ofstream(fresh_leftover) << "being written";
+    // A later process reads the oldest: used now.
+    options.disk_cache_max_bytes = 4 * largest + largest / 2;
+    {
+        ShaderCompiler compiler(options);
+        compile(compiler, 0);
+        EXPECT_EQ(compiler.stats().disk_hits, 1u);
+        // A new entry takes the cache over its bound (7 entries): down to 3/4 of it.
+        made.push_back(compile(compiler, 6));
+        EXPECT_EQ(compiler.stats().compiles, 1u);
+    }
+    uint64_t total = 0;
+    for (const auto& e : fs::directory_iterator(cache.path))
+        if (e.path().extension() == ".spv") total += fs::file_size(e.path());
+    EXPECT_LE(total, options.disk_cache_max_bytes / 4 * 3);
+    EXPECT_TRUE(fs::exists(entry(made[0]))) << "read just now, so kept";
+    EXPECT_TRUE(fs::exists(entry(made[6]))) << "written just now, so kept";
+    EXPECT_FALSE(fs::exists(entry(made[1]))) << "the least recently used goes first";
+    EXPECT_FALSE(fs::exists(entry(made[2])));
+    EXPECT_TRUE(fs::exists(entry(made[5]))) << "the most recent of the old ones stays";
+    EXPECT_TRUE(fs::exists(cache.path / "notes.txt"));
+    EXPECT_FALSE(fs::exists(leftover)) << "a killed writer's leftover, two hours old";
+    EXPECT_TRUE(fs::exists(fresh_leftover)) << "another writer's file in progress";
 }
 
 // A cache directory that cannot be made (below a file) costs a warning, never a shader.

@@ -36,6 +36,11 @@ struct Spirv {
 struct ShaderCompilerOptions {
     std::string source_dir;      // empty: the embedded sources only
     std::string disk_cache_dir;  // empty: no on-disk cache
+    // The on-disk cache's bound: after a compile adds an entry, the least recently used
+    // entries (a read refreshes an entry's time) go until the cache holds at most 3/4 of
+    // it, and writers' leftovers older than an hour (a killed process's .partial files)
+    // go too. An entry is about 10-20 KiB; 0: no bound.
+    uint64_t disk_cache_max_bytes = 64ull << 20;
     bool debug_info = false;     // keep debug information in the SPIR-V
 };
 
