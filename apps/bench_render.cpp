@@ -66,9 +66,11 @@ int run_render_bench(const cli::Parsed& a) {
         wall.push_back(images->wall_ms);
         std::fprintf(stderr, "facet-bench: frame %d/%d: %.1f ms GPU\n", f + 1, frames, sum);
     }
-    std::printf("\n%s under %s, %ux%u, %zu light(s), %d frames on %s, medians\n", job.model.c_str(), job.env.c_str(),
-                job.frame.width, job.frame.height, (*session)->frame().lights.size(), frames,
-                context.device_name().c_str());
+    std::printf("\n%s under %s, %ux%u, %ux MSAA, %s, %zu light(s), %d frames on %s, medians\n", job.model.c_str(),
+                job.env.c_str(), job.frame.width, job.frame.height, job.frame.samples,
+                job.frame.flat_floor ? "the floor (flat colour)"
+                                     : ("shading " + std::string(shading_method_name((*session)->shading().method))).c_str(),
+                (*session)->frame().lights.size(), frames, context.device_name().c_str());
     // Wall time per pass (each its own submission, waited for) beside the timestamps:
     // lavapipe defers rasterisation and runs compute asynchronously, so its timestamps
     // can credit one pass with another's work.

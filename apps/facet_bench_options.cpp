@@ -20,6 +20,10 @@ void add_render_bench_options(cli::Parser& parser) {
         .option("--width", "W", "render: image width (default 1280)")
         .option("--height", "H", "render: image height (default 720)")
         .option("--frames", "N", "render: frames measured after one warm-up (default 10)")
+        .option("--samples", "N", "render: MSAA samples, 1, 2, 4 (default) or 8")
+        .option("--shading", "METHOD", "render: environment lighting, as facet-render's --shading (default auto)")
+        .flag("--floor", "render: the rasterizer's floor instead of the shading: the same draws, depth and MSAA,\n"
+                         "each fragment writing its material's base colour (no texture, no light)")
         .repeatable("--light", "SPEC", "render: a light, as facet-render's --light (repeatable)");
 }
 
@@ -82,6 +86,9 @@ RenderBenchOptions parse_render_bench_options(const cli::Parsed& a) {
     if (a.has("--width")) job.frame.width = uint32_t(cli::parse_int(a.get("--width"), "--width", 1, 16384));
     if (a.has("--height")) job.frame.height = uint32_t(cli::parse_int(a.get("--height"), "--height", 1, 16384));
     if (a.has("--frames")) o.frames = cli::parse_int(a.get("--frames"), "--frames", 1, 10000);
+    job.frame.samples = samples_option(a, job.frame.samples);
+    job.shading = shading_option(a, job.shading);
+    job.frame.flat_floor = a.has("--floor");
     for (const std::string& spec : a.all("--light")) {
         auto light = parse_light(spec);
         if (!light) throw std::invalid_argument(light.error().message);

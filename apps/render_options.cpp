@@ -15,6 +15,22 @@
 
 namespace facet {
 
+uint32_t samples_option(const cli::Parsed& a, uint32_t fallback) {
+    if (!a.has("--samples")) return fallback;
+    const int n = cli::parse_int(a.get("--samples"), "--samples", 1, 8);
+    if (n != 1 && n != 2 && n != 4 && n != 8) throw std::invalid_argument("--samples must be 1, 2, 4 or 8");
+    return uint32_t(n);
+}
+
+ShadingMethod shading_option(const cli::Parsed& a, ShadingMethod fallback) {
+    if (!a.has("--shading")) return fallback;
+    const auto method = parse_shading_method(a.get("--shading"));
+    if (!method)
+        throw std::invalid_argument("--shading: expected one of " + std::string(shading_method_names()) + ", got '" +
+                                    a.get("--shading") + "'");
+    return *method;
+}
+
 float number_option(const cli::Parsed& a, const char* name, float min, float max) {
     const double v = cli::parse_double(a.get(name), name);
     if (v < min || v > max)
@@ -119,11 +135,7 @@ void parse_render_options(const cli::Parsed& a, RenderJob& j) {
         j.extra_lights.push_back(*light);
     }
     j.frame.skybox = !a.has("--no-skybox");
-    if (a.has("--samples")) {
-        const int n = cli::parse_int(a.get("--samples"), "--samples", 1, 8);
-        if (n != 1 && n != 2 && n != 4 && n != 8) throw std::invalid_argument("--samples must be 1, 2, 4 or 8");
-        j.frame.samples = uint32_t(n);
-    }
+    j.frame.samples = samples_option(a, j.frame.samples);
     j.frame.brdf = cli::brdf_option(a, j.frame.brdf);
     j.frame.multiscatter = a.has("--multiscatter");
     j.extract_lights = a.has("--extract-lights");
@@ -138,11 +150,7 @@ void parse_render_options(const cli::Parsed& a, RenderJob& j) {
     if (a.has("--shading")) {
         if (a.has("--extract-lights") || a.has("--specular-dir"))
             throw std::invalid_argument("--shading names the whole method: leave out --extract-lights and --specular-dir");
-        const auto method = parse_shading_method(a.get("--shading"));
-        if (!method)
-            throw std::invalid_argument("--shading: expected one of " + std::string(shading_method_names()) + ", got '" +
-                                        a.get("--shading") + "'");
-        j.shading = *method;
+        j.shading = shading_option(a, j.shading);
     }
     if (a.has("--target-error")) {
         const double e = cli::parse_double(a.get("--target-error"), "--target-error");

@@ -177,6 +177,7 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     define_if(settings.brdf == BrdfModel::thesis, "BRDF_THESIS");
     define_if(ibl && settings.multiscatter, "MULTISCATTER");
     define_if(ibl && settings.dominant_direction, "DOMINANT_DIRECTION");
+    define_if(settings.flat_floor, "FLAT_FLOOR");
     defines.insert(defines.end(), disk_defines.begin(), disk_defines.end());
     defines.push_back({"VIEW", std::to_string(int(view))});
 

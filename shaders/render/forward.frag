@@ -262,6 +262,12 @@ Surface surface_at(MaterialData m) {
 
 void main() {
     MaterialData m = materials[draw.material];
+#ifdef FLAT_FLOOR
+    // The rasterizer's floor (FrameSettings::flat_floor): the base colour factor, nothing read
+    // or lit.
+    out_color = vec4(m.base_color.rgb, 1.0);
+    return;
+#endif
     Surface surface = surface_at(m);
     FacetSurface s = surface.shading;
 #ifdef ALPHA_MASK

@@ -92,6 +92,29 @@ Material emitter(glm::vec3 emissive, float alpha, AlphaMode mode) {
     return m;
 }
 
+// The benchmark's floor (FrameSettings::flat_floor): every covered pixel is the material's
+// base colour factor, whatever the light; the background stays empty.
+TEST_F(ForwardRenderTest, FlatFloorWritesTheBaseColourFactor) {
+    Scene scene;
+    Material m;
+    m.base_color = glm::vec4(0.25f, 0.5f, 0.75f, 1.0f);
+    m.metallic = 1.0f;
+    m.roughness = 0.3f;
+    scene.materials.push_back(m);
+    add_quad(scene, 0, 0.0f, false);
+    RenderJob job = small_job("quad", "builtin:sky");
+    job.frame.skybox = false;
+    job.frame.flat_floor = true;
+    job.frame.samples = 1;
+    const RenderedImages images = render(job, std::move(scene));
+    ASSERT_EQ(images.hdr.size(), 64u * 64u * 4u);
+    const Pixel centre = at(images.hdr, 64, 32, 32);
+    EXPECT_FLOAT_EQ(centre.r, 0.25f);
+    EXPECT_FLOAT_EQ(centre.g, 0.5f);
+    EXPECT_FLOAT_EQ(centre.b, 0.75f);
+    EXPECT_EQ(at(images.hdr, 64, 0, 0).a, 0.0f);  // the default camera frames the quad with a margin
+}
+
 TEST_F(ForwardRenderTest, WhiteFurnaceLambertSphereIsOneEverywhere) {
     RenderJob job = small_job("builtin:sphere", "builtin:white");
     job.preset = "lambert";

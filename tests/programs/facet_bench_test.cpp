@@ -45,6 +45,11 @@ TEST(FacetBench, RenderReportsMedianFrameAndPasses) {
     for (const char* text : {"3 frames", "forward", "skybox", "tonemap", "ms GPU", "ms wall", "IBL bake", "1 light(s)"})
         EXPECT_NE(out.find(text), std::string::npos) << text << "\n" << out;
     EXPECT_EQ(out.find("Validation"), std::string::npos) << out;
+    // The rasterizer's floor, single-sample, says so.
+    auto [floor_status, floor_out] =
+        run("render --model builtin:sphere --env builtin:white --width 64 --height 48 --frames 2 --floor --samples 1");
+    ASSERT_EQ(floor_status, 0) << floor_out;
+    EXPECT_NE(floor_out.find("1x MSAA, the floor (flat colour)"), std::string::npos) << floor_out;
     auto [bad, bad_out] = run("render --model builtin:nothing");
     EXPECT_EQ(bad, 1);
     EXPECT_NE(bad_out.find("builtin:nothing"), std::string::npos) << bad_out;

@@ -57,6 +57,9 @@ struct FrameSettings {
     // hold them): the disks' specular fades in across the level below it.
     uint32_t environment_light_level = 0;
     std::vector<View> views;         // extra images, each RGBA32F, one sample per pixel
+    // The rasterizer's floor, for benchmarks: the same draws, depth test and MSAA, each
+    // fragment writing its material's base colour factor (no texture, no lighting).
+    bool flat_floor = false;
 };
 
 struct FrameImages {
