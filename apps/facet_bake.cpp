@@ -46,6 +46,7 @@ BakeSettings bake_settings(const Options& o) {
     b.roughness_min = o.roughness_min;
     b.roughness_max = o.roughness_max;
     b.preview_exposure = o.exposure;
+    b.lut_cache.directory = o.lut_cache;
     return b;
 }
 

@@ -49,7 +49,10 @@ cli::Parser make_parser() {
         .flag("--force", "bake even if DIR holds a bake of the same input and settings")
         .option("--device", "NAME|INDEX", "Vulkan device (default: FACET_DEVICE, a GPU, else lavapipe)")
         .flag("--validation", "enable the Khronos validation layer")
-        .option("--graph-dot", "FILE", "also write the compiled render graph as Graphviz dot");
+        .option("--graph-dot", "FILE", "also write the compiled render graph as Graphviz dot")
+        .option("--lut-cache", "DIR", "keep the BRDF LUT in DIR for later bakes: it does not depend on the environment\n"
+                                      "                          (default: $XDG_CACHE_HOME/facet/bakes, facet-render's bake cache)")
+        .flag("--no-lut-cache", "compute the BRDF LUT in every bake");
     add_shader_cache_option(p);
     return p;
 }
@@ -121,6 +124,14 @@ std::optional<BakeOptions> parse_bake_options(int argc, char** argv) {
     o.validation = a.has("--validation");
     o.graph_dot = a.get("--graph-dot");
     o.shader_cache = shader_cache_dir(a);
+    if (a.has("--lut-cache") && a.has("--no-lut-cache"))
+        throw std::invalid_argument("--lut-cache and --no-lut-cache exclude each other");
+    if (a.has("--lut-cache")) {
+        if (a.get("--lut-cache").empty()) throw std::invalid_argument("--lut-cache needs a directory");
+        o.lut_cache = a.get("--lut-cache");
+    } else if (!a.has("--no-lut-cache")) {
+        o.lut_cache = user_cache_dir("bakes");
+    }
     return o;
 }
 

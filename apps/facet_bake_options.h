@@ -15,6 +15,7 @@ namespace facet {
 struct BakeOptions {
     std::string env, out_dir, device, graph_dot;
     std::string shader_cache;  // empty: no on-disk shader cache
+    std::string lut_cache;     // the BRDF LUT kept across runs (BakeSettings::lut_cache); empty: none
     uint32_t sky_width = 1024;
     uint32_t max_env_width = kDefaultMaxEnvironmentWidth;  // wider files are downsampled while read
     uint32_t cube_size = 0;  // 0: input height / 2

@@ -1,5 +1,6 @@
 #include "render_options.h"
 #include "light_spec.h"
+#include "shader_cache.h"
 
 #include <cstdlib>
 
@@ -195,11 +196,7 @@ void parse_render_options(const cli::Parsed& a, RenderJob& j) {
         if (a.get("--bake-cache").empty()) throw std::invalid_argument("--bake-cache needs a directory");
         j.bake_cache_dir = a.get("--bake-cache");
     } else if (!a.has("--no-bake-cache")) {
-        // The library reads no environment: the program picks the folder (XDG base directories).
-        const char* xdg = std::getenv("XDG_CACHE_HOME");
-        const char* home = std::getenv("HOME");
-        auto dir = default_cache_directory(xdg ? xdg : "", home ? home : "");
-        if (dir) j.bake_cache_dir = dir.value() + "/bakes";  // else no cache: nowhere to keep it
+        j.bake_cache_dir = user_cache_dir("bakes");
     }
 }
 

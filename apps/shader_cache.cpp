@@ -21,11 +21,15 @@ std::string shader_cache_dir(const cli::Parsed& parsed) {
         return parsed.get("--shader-cache");
     }
     if (const char* env = std::getenv("FACET_SHADER_CACHE"); env && *env) return env;
+    return user_cache_dir("shaders");
+}
+
+std::string user_cache_dir(const char* name) {
     // The library reads no environment: the program picks the folder (XDG base directories).
     const char* xdg = std::getenv("XDG_CACHE_HOME");
     const char* home = std::getenv("HOME");
     auto dir = default_cache_directory(xdg ? xdg : "", home ? home : "");
-    return dir ? dir.value() + "/shaders" : "";  // no HOME: nowhere to keep it
+    return dir ? dir.value() + "/" + name : "";  // no HOME: nowhere to keep it
 }
 
 std::string shader_dir_from_environment() {

@@ -16,6 +16,9 @@ void add_shader_cache_option(cli::Parser& parser);
 // The cache directory chosen as above; empty: none (--no-shader-cache, or no HOME).
 // Throws std::invalid_argument for both flags or an empty DIR.
 std::string shader_cache_dir(const cli::Parsed& parsed);
+// The user's cache directory NAME: $XDG_CACHE_HOME/facet/NAME, else ~/.cache/facet/NAME;
+// empty without either (nowhere to keep anything).
+std::string user_cache_dir(const char* name);
 // FACET_SHADER_DIR: read shaders from this directory instead of the embedded copies
 // (the library reads no environment variable; ShaderCompilerOptions::source_dir).
 // Empty: unset.

@@ -19,6 +19,7 @@
 #include "ibl/bake_cancel.h"
 #include "ibl/baked_environment_finish.h"
 #include "ibl/baked_outputs.h"
+#include "ibl/lut_cache.h"
 #include "core/guarded.h"
 
 namespace facet {
@@ -55,6 +56,21 @@ Outputs run_bake_graph(Context& context, ProgramCache& programs, const Environme
         return *result;
     };
     IblBake ibl(context, programs);
+    // The BRDF LUT from the cache when it holds one made with the same model, size, samples
+    // and shaders; otherwise computed here and kept there after the run.
+    std::string lut_key;
+    bool lut_cached = false;
+    if (settings.ibl.want_lut && !settings.lut_cache.directory.empty()) {
+        lut_key = check(brdf_lut_cache_key(programs, settings.ibl.lut));
+        std::string note;
+        std::vector<float> texels = find_cached_lut(settings.lut_cache, lut_key, settings.ibl.lut.size, note);
+        if (!note.empty() && cb.progress) cb.progress("BRDF LUT cache: " + note);
+        if (!texels.empty()) {
+            ibl.use_lut(std::move(texels));
+            lut_cached = true;
+            if (cb.progress) cb.progress("BRDF LUT from the cache in " + settings.lut_cache.directory);
+        }
+    }
     RenderGraph graph;
     IblImages images = check(ibl.add_passes(graph, source, settings.ibl, split));
     ImageHandle preview;
@@ -104,6 +120,11 @@ Outputs run_bake_graph(Context& context, ProgramCache& programs, const Environme
     r.specular = take(images.specular);
     r.irradiance = take(images.irradiance);
     r.lut = take(images.lut);
+    if (!lut_key.empty() && !lut_cached && r.lut) {
+        const Levels levels = read_levels(context, r.lut, kBakedLayout);
+        Status kept = store_cached_lut(settings.lut_cache, lut_key, levels.front());
+        if (!kept && cb.progress) cb.progress("BRDF LUT cache: " + kept.error().message + " (the LUT is not kept)");
+    }
     r.preview = take(preview);
     if (images.sh9.valid()) {
         auto bytes = or_throw(read_buffer(context, *run.transient_buffer(images.sh9)));

@@ -226,9 +226,22 @@ Result<IblImages> IblBake::add_passes(RenderGraph& graph, const EnvironmentSourc
         lut_desc.width = lut_desc.height = s.lut.size;
         auto target = target_or_new(graph, targets.lut, "brdf lut", lut_desc);
         if (!target) return target.error();
-        auto lut = add_brdf_lut_passes(graph, programs_, s.lut, *target);
-        if (!lut) return lut.error();
-        out.lut = *lut;
+        if (cached_lut_.size() == size_t(s.lut.size) * s.lut.size * 4) {
+            auto made = Buffer::create(context_, cached_lut_.size() * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                       MemoryUsage::upload, "brdf lut upload");
+            if (!made) return made.error();
+            lut_staging_ = std::make_unique<Buffer>(std::move(*made));
+            std::memcpy(lut_staging_->mapped(), cached_lut_.data(), cached_lut_.size() * sizeof(float));
+            if (Status flushed = lut_staging_->flush(); !flushed) return flushed.error();
+            auto staged = graph.import_buffer(
+                "brdf lut texels", {lut_staging_->handle(), lut_staging_->size(),
+                                    {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_WRITE_BIT}, {}});
+            out.lut = add_upload_pass(graph, "upload brdf lut (cached)", staged, *target);
+        } else {
+            auto lut = add_brdf_lut_passes(graph, programs_, s.lut, *target);
+            if (!lut) return lut.error();
+            out.lut = *lut;
+        }
     }
     return out;
 }

@@ -96,6 +96,8 @@ Result<BakedEnvironment> bake_for_session(Context& context, RenderSession::State
     settings.extract_lights = job.extract_lights;
     settings.extraction = job.extraction;
     settings.preview = false;  // environment.png: nothing here shows or saves it
+    // The LUT is kept with the bakes, under the same bound.
+    settings.lut_cache = {job.bake_cache_dir, job.bake_cache_max_bytes, false};
     BakeCallbacks callbacks;
     callbacks.progress = say;
     callbacks.pass_done = [&](uint32_t done, uint32_t total, const std::string& pass) {

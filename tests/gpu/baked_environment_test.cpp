@@ -3,6 +3,8 @@
 // names it. Also the rules of ibl/bake_rules.h and the JSON reader load() relies on.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -151,6 +153,69 @@ TEST_F(BakedEnvironmentTest, SaveThenLoadGivesTheSameTexelsWithSh9InHalfFloat) {
     ASSERT_TRUE(loaded->save(again.path.string()));
     for (const char* name : {"specular.ktx2", "irradiance.ktx2", "brdf_lut.ktx2", "environment.ktx2", "sh9.json"})
         EXPECT_EQ(read_text(dir / name), read_text(again / name)) << name;
+}
+
+// The BRDF LUT kept across bakes (BakeSettings::lut_cache): the first bake computes it and
+// keeps it, a bake of another environment uploads it instead of computing it, with the
+// same texels; a damaged entry is said, removed and the LUT computed again.
+TEST_F(BakedEnvironmentTest, LutCacheKeepsTheLutAcrossEnvironments) {
+    const fs::path dir = fs::temp_directory_path() / ("facet_lut_cache_test_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    BakeSettings settings = small_settings();
+    settings.lut_cache.directory = dir.string();
+    auto bake_with_lines = [&](const EnvironmentSource& source, std::string& lines) {
+        ShaderCompiler compiler;
+        ProgramCache programs(ctx(), compiler);
+        BakeCallbacks cb;
+        cb.progress = [&](const std::string& line) { lines += line + "\n"; };
+        return bake_environment(ctx(), programs, source, settings, cb);
+    };
+    auto has_pass = [](const BakedEnvironment& b, const std::string& name) {
+        for (const PassTiming& t : b.metadata().timings)
+            if (t.name == name) return true;
+        return false;
+    };
+    std::string lines;
+    auto first = bake_with_lines(sun_source(64, 50.0), lines);
+    ASSERT_TRUE(first) << first.error().message;
+    EXPECT_TRUE(has_pass(*first, "brdf lut"));
+    EXPECT_FALSE(has_pass(*first, "upload brdf lut (cached)"));
+    // Another environment: the LUT comes from the cache, texel for texel the one computed.
+    lines.clear();
+    auto second = bake_with_lines(sun_source(64, 500.0), lines);
+    ASSERT_TRUE(second) << second.error().message;
+    EXPECT_TRUE(has_pass(*second, "upload brdf lut (cached)")) << lines;
+    EXPECT_FALSE(has_pass(*second, "brdf lut"));
+    EXPECT_NE(lines.find("BRDF LUT from the cache"), std::string::npos) << lines;
+    ASSERT_TRUE(first->lut() && second->lut());
+    EXPECT_TRUE(bytes_of(ctx(), *first->lut()) == bytes_of(ctx(), *second->lut()));
+    // Another model or size is another entry.
+    settings.ibl.lut.brdf = BrdfModel::thesis;
+    auto thesis = bake_with_lines(sun_source(64, 50.0), lines);
+    ASSERT_TRUE(thesis) << thesis.error().message;
+    EXPECT_TRUE(has_pass(*thesis, "brdf lut"));
+    settings.ibl.lut.brdf = BrdfModel::gltf;
+    // A damaged entry: said, removed, computed again (the same texels), and kept again.
+    size_t damaged = 0;
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+        if (e.path().filename() == "brdf_lut.rgba32f" && e.path().string().find("-gltf-") != std::string::npos) {
+            std::fstream f(e.path(), std::ios::in | std::ios::out | std::ios::binary);
+            f.seekp(100);
+            f.put(char(0x7f));
+            ++damaged;
+        }
+    ASSERT_EQ(damaged, 1u);
+    lines.clear();
+    auto third = bake_with_lines(sun_source(64, 50.0), lines);
+    ASSERT_TRUE(third) << third.error().message;
+    EXPECT_NE(lines.find("contents differ from the manifest"), std::string::npos) << lines;
+    EXPECT_TRUE(has_pass(*third, "brdf lut"));
+    EXPECT_TRUE(bytes_of(ctx(), *first->lut()) == bytes_of(ctx(), *third->lut()));
+    lines.clear();
+    auto fourth = bake_with_lines(sun_source(64, 50.0), lines);
+    ASSERT_TRUE(fourth) << fourth.error().message;
+    EXPECT_TRUE(has_pass(*fourth, "upload brdf lut (cached)")) << lines;
+    fs::remove_all(dir);
 }
 
 TEST_F(BakedEnvironmentTest, MissingTruncatedOrMismatchedFilesAreErrorsNamingThem) {

@@ -7,6 +7,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include <facet/cache/directory_cache.h>
 #include <facet/core/result.h>
 #include <facet/ibl/ibl_bake.h>
 #include <facet/ibl/light_extraction.h>
@@ -31,6 +32,12 @@ struct BakeSettings {
     float roughness_min = 0.0f, roughness_max = 1.0f;
     float preview_exposure = 1.0f;  // environment.png
     bool preview = true;            // environment.png made at all (not needed to render)
+    // The BRDF LUT kept across processes (it depends on the model, its size, its samples
+    // and the shaders that make it, not on the environment): an entry "brdf-lut-..." of
+    // this DirectoryCache (facet-render's bake cache, facet-bake's --lut-cache). A hit
+    // uploads it instead of computing it; a damaged entry is said, removed and made again.
+    // Empty directory: none.
+    CacheOptions lut_cache{"", 4ull << 30, false};
 };
 
 // A line of progress (passes, the budget's measurements, ...).

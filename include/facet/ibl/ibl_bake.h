@@ -109,11 +109,16 @@ public:
     // Made by the first add_passes (which returns an Error if the device cannot make it).
     const Sampler& cube_sampler() const { return *cube_sampler_; }
 
+    // The BRDF LUT as computed before (RGBA32F, settings.lut.size squared, from a cache):
+    // add_passes uploads it instead of computing it. Other sizes are not used.
+    void use_lut(std::vector<float> texels) { cached_lut_ = std::move(texels); }
+
 private:
     Context& context_;
     ProgramCache& programs_;
     std::unique_ptr<Sampler> equirect_sampler_, cube_sampler_;
-    std::unique_ptr<Buffer> staging_, whole_staging_;
+    std::unique_ptr<Buffer> staging_, whole_staging_, lut_staging_;
+    std::vector<float> cached_lut_;
 };
 
 }  // namespace facet
