@@ -12,6 +12,10 @@ then, per roughness row r = j / 16, log E fitted by a polynomial of degree 5 in 
 r >= 0.25).
 Pure Python, about 10 s. The truth (reference/final_image_truth.cpp) integrates E on its own.
 
+Also M(mu, r), the cosine-weighted mean over n.l of min(1, max(E(mu), E(n.l))): what the
+extension's albedo scaling (its min form) takes from a Lambertian base under uniform light,
+fitted the same way.
+
 Usage: python3 scripts/make_sheen_albedo.py [OUT.glsl]
 """
 import math
@@ -71,25 +75,39 @@ def solve(a, b):
     return [m[i][n] / m[i][i] for i in range(n)]
 
 
-def fit_row(r):
-    """log E(mu) at roughness r as a polynomial in sqrt(mu), least squares weighted by E
+def fit_log_polynomial(samples):
+    """log y(mu) as a polynomial of degree DEGREE in sqrt(mu), least squares weighted by y
     (capped at 1.5): absolute errors count, the tiny values of a smooth lobe at normal
     incidence do not."""
     n = DEGREE + 1
     a = [[0.0] * n for _ in range(n)]
     b = [0.0] * n
-    for i in range(2, 65):
-        mu = (i / 64) ** 2
-        e = albedo(mu, r)
-        if e < 1e-7:
+    for mu, y in samples:
+        if y < 1e-7:
             continue
         f = [math.sqrt(mu) ** k for k in range(n)]
-        w2 = min(e, 1.5) ** 2
+        w2 = min(y, 1.5) ** 2
         for p in range(n):
-            b[p] += w2 * f[p] * math.log(e)
+            b[p] += w2 * f[p] * math.log(y)
             for q in range(n):
                 a[p][q] += w2 * f[p] * f[q]
     return solve(a, b)
+
+
+def rows_for(r):
+    """The fits of E and of M, the cosine-weighted mean over l of the albedo scaling's
+    min(1, max(E(n.v), E(n.l))) (what the min form of the scaling takes from a Lambertian
+    base under uniform light): M = integral of min(1, max(E(mu), E(t))) 2 t dt, midpoint
+    rule in x = sqrt(t) (2 t dt = 4 x^3 dx)."""
+    mus = [(i / 64) ** 2 for i in range(2, 65)]
+    e = [albedo(mu, r) for mu in mus]
+    xs = [(k + 0.5) / 64 for k in range(64)]
+    e_light = [min(albedo(x * x, r), 1.0) for x in xs]
+    mean = []
+    for ev in e:
+        m = sum(max(min(ev, 1.0), el) * 4 * x ** 3 for el, x in zip(e_light, xs)) / 64
+        mean.append(m)
+    return fit_log_polynomial(list(zip(mus, e))), fit_log_polynomial(list(zip(mus, mean)))
 
 
 def main():
@@ -105,10 +123,15 @@ def main():
         "// invocation on lavapipe (a 561-entry table made a 256^2 frame take minutes).",
     ]
     lines.append("const float FACET_SHEEN_ALBEDO_ROWS = %d.0;" % ROWS)
+    means = []
     for j in range(1, ROWS + 1):
-        c = fit_row(j / ROWS)
+        c, m = rows_for(j / ROWS)
         lines.append("#define FACET_SHEEN_ROWS_%d FACET_SHEEN_ROW(%d, %s)" % (j, j, ", ".join("%.8g" % x for x in c)))
+        means.append("#define FACET_SHEEN_MEAN_ROWS_%d FACET_SHEEN_ROW(%d, %s)" % (j, j, ", ".join("%.8g" % x for x in m)))
     lines.append("#define FACET_SHEEN_ROWS " + " ".join("FACET_SHEEN_ROWS_%d" % j for j in range(1, ROWS + 1)))
+    lines.append("// M(mu, r): the cosine-weighted mean over n.l of min(1, max(E(mu), E(n.l))), fitted the same way.")
+    lines += means
+    lines.append("#define FACET_SHEEN_MEAN_ROWS " + " ".join("FACET_SHEEN_MEAN_ROWS_%d" % j for j in range(1, ROWS + 1)))
     lines.append("#endif")
     with open(out, "w") as f:
         f.write("\n".join(lines) + "\n")

@@ -16,10 +16,11 @@
 //       (the fitted Lambda's lobe reflects more than it receives at grazing angles for
 //       sheenRoughness below about 0.35: E(n.v 0.05, r 0.1) = 1.03; the tables the extension
 //       points to store E in [0, 1]).
-// The environment (facet_environment_sheen) takes the simplified scaling the extension gives
-// for image-based light, 1 - max3(sheenColor) E(n.v), and the lobe's light as E(n.v) times the
-// irradiance cube's E / pi along n (exact under uniform light; measured against the truth in
-// tests/gpu/brdf_models_truth_test.cpp).
+// The environment (facet_environment_sheen) scales the specular lobe by the extension's
+// simplified scaling for image-based light, 1 - max3(sheenColor) E(n.v), the diffuse lobe by
+// the min form's cosine-weighted mean (exact for a Lambertian base under uniform light), and
+// takes the sheen's light as E(n.v) times the irradiance cube's E / pi along n (exact under
+// uniform light; measured against the truth in tests/gpu/brdf_models_truth_test.cpp).
 #include "sheen_albedo.glsl"
 
 // Puts KHR_materials_sheen's layer on the surface: its colour (linear, 0..1; black: none) and
@@ -60,26 +61,44 @@ float facet_sheen_v(float NdotV, float NdotL, float roughness) {
     return 1.0 / ((1.0 + facet_sheen_lambda(NdotV, alpha) + facet_sheen_lambda(NdotL, alpha)) * 4.0 * NdotV * NdotL);
 }
 
-// E(n.x, roughness) from facet/sheen_albedo.glsl's rows (n.x from 0.001, where they were
-// fitted): the exponent's coefficients blended linearly in roughness between the two rows
-// about it (one exp; below the first row E fades linearly to 0 at roughness 0).
-float facet_sheen_albedo(float NdotX, float roughness) {
-    float s = sqrt(clamp(NdotX, 1e-3, 1.0));
-    float y = clamp(roughness, 0.0, 1.0) * FACET_SHEEN_ALBEDO_ROWS;
-    float weights = 0.0;
-    vec3 low = vec3(0.0), high = vec3(0.0);  // c0 c1 c2, c3 c4 c5
+// A fit of facet/sheen_albedo.glsl (ROWS: FACET_SHEEN_ROWS or FACET_SHEEN_MEAN_ROWS) at
+// n.x (from 0.001, where the rows were fitted) and roughness: the exponent's coefficients
+// blended linearly in roughness between the two rows about it (one exp; below the first row
+// the value fades linearly to 0 at roughness 0).
+#define FACET_SHEEN_FIT(ROWS, NdotX, roughness, result)                                        \
+    {                                                                                          \
+        float s_ = sqrt(clamp(NdotX, 1e-3, 1.0));                                              \
+        float y_ = clamp(roughness, 0.0, 1.0) * FACET_SHEEN_ALBEDO_ROWS;                       \
+        float weights_ = 0.0;                                                                  \
+        vec3 low_ = vec3(0.0), high_ = vec3(0.0); /* c0 c1 c2, c3 c4 c5 */                     \
+        ROWS                                                                                   \
+        float exponent_ = low_.x + s_ * (low_.y + s_ * (low_.z + s_ * (high_.x + s_ * (high_.y + s_ * high_.z)))); \
+        result = weights_ * exp(exponent_ / max(weights_, 1e-6));                              \
+    }
 #define FACET_SHEEN_ROW(j, c0, c1, c2, c3, c4, c5)                                             \
     {                                                                                          \
-        float w = max(1.0 - abs(y - float(j)), 0.0);                                           \
-        low += w * vec3(c0, c1, c2);                                                           \
-        high += w * vec3(c3, c4, c5);                                                          \
-        weights += w;                                                                          \
+        float w_ = max(1.0 - abs(y_ - float(j)), 0.0);                                         \
+        low_ += w_ * vec3(c0, c1, c2);                                                         \
+        high_ += w_ * vec3(c3, c4, c5);                                                        \
+        weights_ += w_;                                                                        \
     }
-    FACET_SHEEN_ROWS
-#undef FACET_SHEEN_ROW
-    float exponent = (low.x + s * (low.y + s * (low.z + s * (high.x + s * (high.y + s * high.z))))) / max(weights, 1e-6);
-    return weights * exp(exponent);
+
+// E(n.x, roughness), the sheen lobe's directional albedo.
+float facet_sheen_albedo(float NdotX, float roughness) {
+    float e;
+    FACET_SHEEN_FIT(FACET_SHEEN_ROWS, NdotX, roughness, e)
+    return e;
 }
+
+// M(n.v, roughness): the cosine-weighted mean over n.l of min(1, max(E(n.v), E(n.l))), what
+// the albedo scaling takes from a Lambertian base under uniform light.
+float facet_sheen_mean_albedo(float NdotV, float roughness) {
+    float m;
+    FACET_SHEEN_FIT(FACET_SHEEN_MEAN_ROWS, NdotV, roughness, m)
+    return m;
+}
+#undef FACET_SHEEN_ROW
+#undef FACET_SHEEN_FIT
 
 // 1 - max3(sheenColor) min(E(n.x), 1): the share of the material below left at n.x.
 float facet_sheen_scaling(FacetSurface s, float NdotX) {
@@ -102,13 +121,15 @@ vec3 facet_sheen_light(FacetSurface s, vec3 v, float NdotV, vec3 l, vec3 inciden
     return s.sheen_color * lobe * incident;
 }
 
-// The environment: `diffuse` and `specular` (facet_environment_light's, for the same surface)
-// scaled by 1 - max3(sheenColor) E(n.v), and the sheen's light returned: sheenColor E(n.v)
-// times `irradiance` (E / pi along n, times the intensity) and the occlusion.
+// The environment: `specular` (facet_environment_light's, for the same surface) scaled by
+// 1 - max3(sheenColor) E(n.v) (its lobe gathers light near R, where n.l is about n.v), and
+// `diffuse` by 1 - max3(sheenColor) M(n.v), the min form's mean over the cosine lobe (the
+// simplified scaling at n.v alone left a white Lambertian sheen up to 13% above the truth in
+// the white furnace at n.v 0.2); the sheen's light returned: sheenColor E(n.v) times
+// `irradiance` (E / pi along n, times the intensity) and the occlusion.
 vec3 facet_environment_sheen(FacetSurface s, float NdotV, vec3 irradiance, inout vec3 diffuse, inout vec3 specular) {
-    float scaling = facet_sheen_scaling(s, NdotV);
-    diffuse *= scaling;
-    specular *= scaling;
+    specular *= facet_sheen_scaling(s, NdotV);
+    diffuse *= 1.0 - facet_max3(s.sheen_color) * facet_sheen_mean_albedo(NdotV, s.sheen_roughness);
     return s.sheen_color * facet_sheen_albedo(NdotV, s.sheen_roughness) * irradiance * s.occlusion;
 }
 
