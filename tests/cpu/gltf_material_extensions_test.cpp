@@ -12,6 +12,7 @@
 #include <string>
 
 #include <facet/scene/gltf_loader.h>
+#include <facet/scene/scene_needs.h>
 #include "support/gltf_files.h"
 
 namespace facet {
@@ -179,6 +180,10 @@ TEST(GltfMaterialExtensions, SheenReadsItsFactors) {
     EXPECT_FALSE(m.sheen_color_texture.valid());
     EXPECT_FALSE(m.sheen_roughness_texture.valid());
     EXPECT_TRUE(scene->warnings.empty()) << scene->warnings[0];
+    // The material is a pure metal (glTF's default metallicFactor 1): only its sheen reads the
+    // irradiance (facet/sheen.glsl), so the bake makes it for the sheen alone.
+    EXPECT_FALSE(scene_needs(*plain).diffuse);
+    EXPECT_TRUE(scene_needs(*scene).diffuse);
     const Result<Scene> unlit =
         load_material(dir, R"("KHR_materials_sheen": {"sheenColorFactor": [1, 1, 1]}, "KHR_materials_unlit": {})");
     ASSERT_TRUE(unlit.ok()) << unlit.error().message;
