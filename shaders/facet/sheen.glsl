@@ -13,9 +13,9 @@
 //       1 / (4 (n.l + n.v - n.l n.v)), which the extension names as the cheaper choice),
 //   s = min(1 - max3(sheenColor) E(n.v), 1 - max3(sheenColor) E(n.l)), the albedo scaling, with
 //       E the lobe's directional albedo (facet/sheen_albedo.glsl, fitted), taken at most 1
-//       (the fitted Lambda's lobe reflects more than it receives at grazing angles for
-//       sheenRoughness below about 0.35: E(n.v 0.05, r 0.1) = 1.03; the tables the extension
-//       points to store E in [0, 1]).
+//       (the fitted Lambda's lobe reflects more than it receives at grazing views for
+//       sheenRoughness below about 0.25: E(n.v 0.05, r 0.1) = 1.03, E(0.01, 0.2) = 1.16; the
+//       tables the extension points to store E in [0, 1]).
 // The environment (facet_environment_sheen) scales the specular lobe by the extension's
 // simplified scaling for image-based light, 1 - max3(sheenColor) E(n.v), the diffuse lobe by
 // the min form's cosine-weighted mean (exact for a Lambertian base under uniform light), and
