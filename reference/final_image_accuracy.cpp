@@ -37,7 +37,11 @@ FinalImageTruth final_image_truth(const FinalImageViews& in, const Vec3& eye, co
         if (image.size() != count * 4)
             throw std::invalid_argument("final_image_accuracy: an image is not " + std::to_string(in.width) + " x " +
                                         std::to_string(in.height) + " RGBA");
-    const bool coated = !in.clearcoat.empty(), filmed = !in.iridescence.empty(), stretched = !in.anisotropy.empty();
+    const bool coated = !in.clearcoat.empty(), filmed = !in.iridescence.empty(), stretched = !in.anisotropy.empty(),
+               sheen = !in.sheen.empty();
+    if (sheen && in.sheen.size() != count * 4)
+        throw std::invalid_argument("final_image_accuracy: the sheen image is not " + std::to_string(in.width) + " x " +
+                                    std::to_string(in.height) + " RGBA");
     if (stretched && in.anisotropy.size() != count * 4)
         throw std::invalid_argument("final_image_accuracy: the anisotropy image is not " + std::to_string(in.width) +
                                     " x " + std::to_string(in.height) + " RGBA");
@@ -78,6 +82,10 @@ FinalImageTruth final_image_truth(const FinalImageViews& in, const Vec3& eye, co
         if (stretched && in.anisotropy[i * 4 + 3] > 0) {
             m.anisotropy = in.anisotropy[i * 4 + 3];
             m.anisotropy_t = {in.anisotropy[i * 4], in.anisotropy[i * 4 + 1], in.anisotropy[i * 4 + 2]};
+        }
+        if (sheen) {
+            m.sheen_color = {in.sheen[i * 4], in.sheen[i * 4 + 1], in.sheen[i * 4 + 2]};
+            m.sheen_roughness = in.sheen[i * 4 + 3];
         }
         eligible.push_back({i, n, v, m, group_of(roughness, metallic)});
     }

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
 
 namespace facet::test {
 namespace {
@@ -111,8 +114,103 @@ Vec3 thin_film_fresnel(double outside_ior, double film_ior, double cos1, double 
 
 
 
+namespace {
+
+// Conty Estevez and Kulla's fit of the sheen's Lambda (KHR_materials_sheen's lambdaSheen):
+// l(x) = a / (1 + b x^c) + d x + e, its coefficients interpolated by (1 - alpha)^2 between
+// the paper's two fits; Lambda = exp(l(cos)) below cos 0.5, exp(2 l(0.5) - l(1 - cos)) above.
+double sheen_l(double x, double alpha) {
+    const double t = (1 - alpha) * (1 - alpha);
+    const double a = 21.5473 + (25.3245 - 21.5473) * t, b = 3.82987 + (3.32435 - 3.82987) * t;
+    const double c = 0.19823 + (0.16801 - 0.19823) * t, d = -1.97760 + (-1.27393 + 1.97760) * t;
+    const double e = -4.32054 + (-4.85967 + 4.32054) * t;
+    return a / (1 + b * std::pow(x, c)) + d * x + e;
+}
+
+double sheen_lambda(double cos_theta, double alpha) {
+    return cos_theta < 0.5 ? std::exp(sheen_l(cos_theta, alpha))
+                           : std::exp(2 * sheen_l(0.5, alpha) - sheen_l(1 - cos_theta, alpha));
+}
+
+double sheen_alpha(double roughness) { return std::max(roughness * roughness, 1e-6); }
+
+// E(mu) by quadrature over h: with w = sin(theta_h)^(1/alpha + 2), D (n.h) dh = dw dphi / (2 pi),
+// and dl = 4 (v.h) dh, so E = mean over (w, phi) of sheen_dv (n.l) 4 (v.h) / (D (n.h)) =
+// (v.h) / ((1 + Lambda(n.v) + Lambda(n.l)) (n.v) (n.h)) where l = reflect(-v, h) is above.
+double sheen_albedo_integral(double mu, double roughness) {
+    const double alpha = sheen_alpha(roughness), k = 1 / alpha + 2;
+    const double vx = std::sqrt(std::max(1 - mu * mu, 0.0)), lv = sheen_lambda(mu, alpha);
+    constexpr int nw = 512, nphi = 128;
+    double total = 0;
+    for (int i = 0; i < nw; ++i) {
+        const double u = std::pow((i + 0.5) / nw, 1 / k), n_h = std::sqrt(std::max(1 - u * u, 0.0));
+        for (int j = 0; j < nphi; ++j) {
+            const double phi = (j + 0.5) / nphi * pi;  // the integrand is symmetric about the plane of n and v
+            const double v_h = vx * u * std::cos(phi) + mu * n_h, n_l = 2 * v_h * n_h - mu;
+            if (v_h <= 0 || n_l <= 0) continue;
+            total += v_h / ((1 + lv + sheen_lambda(n_l, alpha)) * mu * n_h);
+        }
+    }
+    return total / (double(nw) * nphi);
+}
+
+constexpr int kSheenNodes = 257;  // in sqrt(n.v), node 0 at n.v 1e-6
+
+std::shared_ptr<const std::vector<double>> sheen_albedo_table(double roughness) {
+    static std::mutex mutex;
+    static std::map<double, std::shared_ptr<const std::vector<double>>> tables;
+    std::lock_guard<std::mutex> lock(mutex);
+    auto& table = tables[roughness];
+    if (!table) {
+        auto nodes = std::make_shared<std::vector<double>>(kSheenNodes);
+        for (int i = 0; i < kSheenNodes; ++i) {
+            const double x = double(i) / (kSheenNodes - 1);
+            (*nodes)[size_t(i)] = sheen_albedo_integral(std::max(x * x, 1e-6), roughness);
+        }
+        table = nodes;
+    }
+    return table;
+}
+
+}  // namespace
+
+double sheen_dv(double n_h, double n_v, double n_l, double roughness) {
+    const double alpha = sheen_alpha(roughness), inv = 1 / alpha;
+    const double sin2h = std::max(1 - n_h * n_h, 0.0);
+    const double D = (2 + inv) * std::pow(sin2h, 0.5 * inv) / (2 * pi);
+    const double V = 1 / ((1 + sheen_lambda(n_v, alpha) + sheen_lambda(n_l, alpha)) * 4 * n_v * n_l);
+    return D * V;
+}
+
+double sheen_albedo(double n_v, double roughness) {
+    // The last table used by this thread, so that a sum over texels takes no lock.
+    thread_local double last_roughness = -1;
+    thread_local std::shared_ptr<const std::vector<double>> last;
+    if (!last || last_roughness != roughness) {
+        last = sheen_albedo_table(roughness);
+        last_roughness = roughness;
+    }
+    const double x = std::sqrt(std::clamp(n_v, 0.0, 1.0)) * (kSheenNodes - 1);
+    const int i = std::min(int(x), kSheenNodes - 2);
+    const double f = x - i;
+    return (*last)[size_t(i)] * (1 - f) + (*last)[size_t(i) + 1] * f;
+}
+
 Vec3 brdf_cos(BrdfModel model, const TruthMaterial& m, const Vec3& n, const Vec3& v, const Vec3& l, bool punctual) {
-    const Vec3 below = layer_brdf_cos(model, m, n, v, l, punctual);
+    Vec3 below = layer_brdf_cos(model, m, n, v, l, punctual);
+    const double sheen_max = std::max({m.sheen_color[0], m.sheen_color[1], m.sheen_color[2]});
+    const double n_l = dot(n, l);
+    if (sheen_max > 0 && n_l > 0) {
+        // KHR_materials_sheen: the material below scaled by the albedo scaling, the sheen's lobe added.
+        const double n_v = std::max(dot(n, v), 1e-9);
+        const double scaling = std::min(1 - sheen_max * std::min(sheen_albedo(n_v, m.sheen_roughness), 1.0),
+                                        1 - sheen_max * std::min(sheen_albedo(n_l, m.sheen_roughness), 1.0));
+        Vec3 h{v[0] + l[0], v[1] + l[1], v[2] + l[2]};
+        const double h_len = std::sqrt(dot(h, h));
+        const double lobe = h_len < 1e-12 ? 0.0 : sheen_dv(std::clamp(dot(n, h) / h_len, 0.0, 1.0), n_v, n_l,
+                                                           m.sheen_roughness) * n_l;
+        for (size_t c = 0; c < 3; ++c) below[c] = below[c] * scaling + m.sheen_color[c] * lobe;
+    }
     if (m.clearcoat <= 0) return below;
     Vec3 h{v[0] + l[0], v[1] + l[1], v[2] + l[2]};
     const double h_len = std::sqrt(dot(h, h));

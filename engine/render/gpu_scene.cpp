@@ -120,7 +120,8 @@ std::vector<GpuMaterial> gpu_materials(const std::vector<Material>& materials) {
                        glm::vec4(m.specular_color, 0.0f),
                        glm::vec4(m.iridescence, m.iridescence_ior, m.iridescence_thickness_minimum,
                                  m.iridescence_thickness_maximum),
-                       glm::vec4(m.anisotropy, m.anisotropy_rotation, 0.0f, 0.0f)});
+                       glm::vec4(m.anisotropy, m.anisotropy_rotation, 0.0f, 0.0f),
+                       glm::vec4(m.sheen_color, m.sheen_roughness)});
     return out;
 }
 
@@ -166,13 +167,13 @@ GpuScene::GpuScene(Context& context, const Scene& scene)
                                    m.occlusion_texture,           m.emissive_texture,           m.clearcoat_texture,
                                    m.clearcoat_roughness_texture, m.clearcoat_normal_texture,   m.specular_texture,
                                    m.specular_color_texture,      m.iridescence_texture,        m.iridescence_thickness_texture,
-                                   m.anisotropy_texture};
+                                   m.anisotropy_texture,          m.sheen_color_texture,        m.sheen_roughness_texture};
         static_assert(std::size(refs) == size_t(TextureSlot::count));
         std::array<GpuTexture, size_t(TextureSlot::count)> slots{};
         std::array<bool, size_t(TextureSlot::count)> has{};
         for (size_t s = 0; s < slots.size(); ++s) {
             const bool srgb = s == size_t(TextureSlot::base_color) || s == size_t(TextureSlot::emissive) ||
-                              s == size_t(TextureSlot::specular_color);
+                              s == size_t(TextureSlot::specular_color) || s == size_t(TextureSlot::sheen_color);
             const TextureRef& ref = refs[s];
             if (ref.valid() && size_t(ref.image) < scene.images.size()) {
                 Image& image = texture_image(uint32_t(ref.image), srgb);

@@ -7,7 +7,7 @@ namespace {
 constexpr const char* kViewNames[] = {"final", "normal", "position", "basecolor", "metallic",
                                       "roughness", "occlusion", "emissive", "D", "F", "G",
                                       "diffuse", "specular", "irradiance", "prefiltered", "f0",
-                                      "clearcoat", "clearcoat_normal", "iridescence", "anisotropy"};
+                                      "clearcoat", "clearcoat_normal", "iridescence", "anisotropy", "sheen"};
 constexpr int kViewCount = sizeof(kViewNames) / sizeof(kViewNames[0]);
 }  // namespace
 

@@ -24,6 +24,7 @@ const std::vector<std::string_view>& supported_extensions() {
             "KHR_materials_emissive_strength",  // gltf_materials.cpp
             "KHR_materials_ior",                // gltf_material_extensions.cpp
             "KHR_materials_iridescence",        // gltf_material_extensions.cpp; drawn by forward.frag (FACET_IRIDESCENCE)
+            "KHR_materials_sheen",              // gltf_material_extensions.cpp; drawn by forward.frag (FACET_SHEEN)
             "KHR_materials_specular",           // gltf_material_extensions.cpp; drawn by forward.frag
             "KHR_materials_unlit",              // gltf_material_extensions.cpp; drawn by forward.frag (UNLIT)
             "KHR_mesh_quantization",            // gltf_attributes.cpp: every component type, normalized or not

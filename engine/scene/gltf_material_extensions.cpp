@@ -115,6 +115,8 @@ void read_unlit(const tinygltf::Material& m, Material& out) {
     out.iridescence_texture = out.iridescence_thickness_texture = {};
     out.anisotropy = 0.0f;
     out.anisotropy_texture = {};
+    out.sheen_color = glm::vec3(0.0f);
+    out.sheen_color_texture = out.sheen_roughness_texture = {};
     out.emissive = glm::vec3(0.0f);
     out.emissive_texture = {};
     out.normal_texture = {};
@@ -168,6 +170,20 @@ void read_anisotropy(const tinygltf::Model& model, const tinygltf::Material& m, 
     out.anisotropy = float(strength);
     out.anisotropy_rotation = float(number(*stretch, "anisotropyRotation", 0.0, at));
     out.anisotropy_texture = texture_info(model, *stretch, "anisotropyTexture", at);
+}
+
+void read_sheen(const tinygltf::Model& model, const tinygltf::Material& m, const std::string& where, Material& out) {
+    const tinygltf::Value* sheen = extension(m, "KHR_materials_sheen", where);
+    if (!sheen) return;
+    const std::string at = where + ": KHR_materials_sheen";
+    double colour[3] = {0.0, 0.0, 0.0};
+    numbers(*sheen, "sheenColorFactor", 3, colour, at);
+    for (double c : colour)
+        if (c < 0.0 || c > 1.0) fail(at + ".sheenColorFactor " + number_text(c) + " is outside [0, 1]");
+    out.sheen_color = glm::vec3(float(colour[0]), float(colour[1]), float(colour[2]));
+    out.sheen_roughness = float(number_within(*sheen, "sheenRoughnessFactor", 0.0, 0.0, 1.0, "[0, 1]", at));
+    out.sheen_color_texture = texture_info(model, *sheen, "sheenColorTexture", at);
+    out.sheen_roughness_texture = texture_info(model, *sheen, "sheenRoughnessTexture", at);
 }
 
 void read_dielectric_extensions(const tinygltf::Model& model, const tinygltf::Material& m, const std::string& where,

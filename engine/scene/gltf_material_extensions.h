@@ -43,6 +43,12 @@ void read_iridescence(const tinygltf::Model& model, const tinygltf::Material& ma
 void read_anisotropy(const tinygltf::Model& model, const tinygltf::Material& material, const std::string& where,
                      Material& out);
 
+// KHR_materials_sheen: sheenColorFactor (three numbers in [0, 1]) and sheenRoughnessFactor
+// (in [0, 1]), else an error; its two textures (colour sRGB RGB, roughness A, with texCoord
+// and KHR_texture_transform).
+void read_sheen(const tinygltf::Model& model, const tinygltf::Material& material, const std::string& where,
+                Material& out);
+
 // KHR_materials_ior (the dielectric F0) and KHR_materials_specular: its factors and its two
 // textures (with texCoord and KHR_texture_transform, as the core textures).
 void read_dielectric_extensions(const tinygltf::Model& model, const tinygltf::Material& material,

@@ -26,6 +26,8 @@ SceneNeeds scene_needs(const Scene& scene) {
         // Metalness is factor x B; the diffuse lobe exists wherever it is below 1.
         const float metal_min = m.metallic * channel_min(scene, m.metallic_roughness_texture, 2);
         if (metal_min < 1.0f) needs.diffuse = true;
+        // A sheen layer reads the irradiance cube (facet/sheen.glsl: its lobe is wide).
+        if (m.has_sheen()) needs.diffuse = true;
         // A clear coat reads the levels of its own roughness.
         if (m.clearcoat > 0.0f)
             needs.min_roughness = std::min(needs.min_roughness, std::clamp(m.clearcoat_roughness, 0.0f, 1.0f) *

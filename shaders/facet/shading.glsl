@@ -54,6 +54,9 @@ struct FacetSurface {
     // FACET_ANISOTROPY is defined before this file is included.
     float anisotropy;
     vec3 anisotropy_t;
+    // KHR_materials_sheen (facet/sheen.glsl): its colour (black: none) and roughness.
+    vec3 sheen_color;
+    float sheen_roughness;
 };
 
 // glTF's metallic-roughness material under the model `brdf`.
@@ -78,6 +81,8 @@ FacetSurface facet_surface(uint brdf, vec3 n, vec3 albedo, float metallic, float
     s.iridescence_thickness = 0.0;
     s.anisotropy = 0.0;
     s.anisotropy_t = vec3(1.0, 0.0, 0.0);
+    s.sheen_color = vec3(0.0);
+    s.sheen_roughness = 0.0;
     return s;
 }
 
@@ -89,6 +94,8 @@ void facet_surface_specular_color(inout FacetSurface s, vec3 colour) {
 }
 
 float facet_max3(vec3 x) { return max(max(x.r, x.g), x.b); }
+
+#include "sheen.glsl"
 
 // Puts KHR_materials_clearcoat's layer over the surface: weight 0..1, perceptual roughness,
 // unit normal (the surface's where the layer has no normal map). The extension's BRDF:
@@ -287,6 +294,7 @@ float facet_geometry(FacetSurface s, float NdotV, float NdotL, bool punctual) {
 // diffuse = kd albedo / pi * incident * n.l and specular = F D G / (4 n.l n.v) * incident
 // * n.l. Zero when l is below the surface. NdotV = clamp(n.v, 0, 1). `punctual` selects
 // the thesis' k for punctual lights (the glTF model has one visibility term).
+// A sheen (FACET_SHEEN, facet/sheen.glsl) scales both and adds its lobe to the specular.
 // A clear coat (facet_surface_clearcoat) dims both by 1 - weight Fc(v.h) and adds its own
 // lobe to the specular, with its normal's n.l.
 void facet_reflect_light(FacetSurface s, vec3 v, float NdotV, vec3 l, vec3 incident, bool punctual,
@@ -308,6 +316,10 @@ void facet_reflect_light(FacetSurface s, vec3 v, float NdotV, vec3 l, vec3 incid
 #endif
         specular = F * dg * incident * NdotL;
     }
+#ifdef FACET_SHEEN
+    vec3 sheen = facet_sheen_light(s, v, NdotV, l, incident, diffuse, specular);  // under the clear coat
+    specular += sheen;
+#endif
     if (s.clearcoat > 0.0) {
         float coat = facet_clearcoat_fresnel(s, VdotH);
         diffuse *= 1.0 - coat;

@@ -11,7 +11,8 @@
 // HAS_CLEARCOAT_ROUGHNESS_MAP, HAS_CLEARCOAT_NORMAL_MAP, HAS_SPECULAR_MAP and HAS_SPECULAR_COLOR_MAP
 // (KHR_materials_specular's textures), FACET_IRIDESCENCE (KHR_materials_iridescence's film) and
 // its HAS_IRIDESCENCE_MAP, HAS_IRIDESCENCE_THICKNESS_MAP, FACET_ANISOTROPY (KHR_materials_anisotropy)
-// and its HAS_ANISOTROPY_MAP, <SLOT>_UV (a texture's coordinates: its uv set and
+// and its HAS_ANISOTROPY_MAP, FACET_SHEEN (KHR_materials_sheen) and its HAS_SHEEN_COLOR_MAP,
+// HAS_SHEEN_ROUGHNESS_MAP, <SLOT>_UV (a texture's coordinates: its uv set and
 // KHR_texture_transform) and NORMAL_TANGENT_FRAME, USE_IBL, BRDF_THESIS (the thesis' model
 // instead of glTF's), MULTISCATTER (energy compensation), DOMINANT_DIRECTION (bent specular
 // lookup), VIEW (what is written: render/views.glsl).
@@ -136,6 +137,12 @@ layout(location = 5) in vec2 in_uv1;
 #ifndef ANISOTROPY_UV
 #define ANISOTROPY_UV in_uv
 #endif
+#ifndef SHEEN_COLOR_UV
+#define SHEEN_COLOR_UV in_uv
+#endif
+#ifndef SHEEN_ROUGHNESS_UV
+#define SHEEN_ROUGHNESS_UV in_uv
+#endif
 
 layout(location = 0) out vec4 out_color;
 
@@ -257,6 +264,18 @@ Surface surface_at(MaterialData m) {
 #endif
     if (has_frame) facet_surface_anisotropy(s.shading, clamp(strength, 0.0, 1.0), frame_tbn * vec3(direction, 0.0));
 #endif
+#ifdef FACET_SHEEN
+    // The sheen: its colour times RGB of its colour texture, its roughness times A of its own.
+    vec3 sheen_color = m.sheen.rgb;
+    float sheen_roughness = m.sheen.a;
+#ifdef HAS_SHEEN_COLOR_MAP
+    sheen_color *= texture(sheen_color_map, SHEEN_COLOR_UV).rgb;
+#endif
+#ifdef HAS_SHEEN_ROUGHNESS_MAP
+    sheen_roughness *= texture(sheen_roughness_map, SHEEN_ROUGHNESS_UV).a;
+#endif
+    facet_surface_sheen(s.shading, clamp(sheen_color, 0.0, 1.0), clamp(sheen_roughness, 0.0, 1.0));
+#endif
     return s;
 }
 
@@ -343,11 +362,22 @@ void main() {
 #else
 #define FACET_DISK_CLEARCOAT(disk)
 #endif
+#ifdef FACET_SHEEN
+    // The sheen's lobe at the cap's centre times its solid angle (facet/sheen.glsl), summed
+    // with the diffuse: like it, it is not read from the prefiltered levels.
+#define FACET_DISK_SHEEN(disk)                                                                                     \
+    vec3 disk_sheen = facet_sheen_light(s, v, NdotV, disk.direction, disk.radiance * disk.solid_angle,            \
+                                        disk_diffuse, disk_specular);                                              \
+    disk_diffuse += disk_sheen;
+#else
+#define FACET_DISK_SHEEN(disk)
+#endif
 #define FACET_DISK(i)                                                                                              \
     if (i < DISK_LIGHTS) {                                                                                         \
         vec3 disk_diffuse, disk_specular;                                                                          \
         FacetDiskLight disk = unpack_disk_light(FACET_DISK_LIGHT_##i);                                             \
         facet_disk_light(s, v, NdotV, disk, disk_diffuse, disk_specular);                                          \
+        FACET_DISK_SHEEN(disk)                                                                                     \
         FACET_DISK_CLEARCOAT(disk)                                                                                 \
         disk_diffuse_sum += disk_diffuse;                                                                          \
         disk_specular_sum += disk_specular;                                                                        \
@@ -356,6 +386,7 @@ void main() {
     FACET_DISK(8) FACET_DISK(9) FACET_DISK(10) FACET_DISK(11) FACET_DISK(12) FACET_DISK(13) FACET_DISK(14) FACET_DISK(15)
 #undef FACET_DISK
 #undef FACET_DISK_CLEARCOAT
+#undef FACET_DISK_SHEEN
     diffuse += disk_diffuse_sum * frame.ibl.x * s.occlusion;
     specular += disk_specular_sum * disk_specular_weight * frame.ibl.x * s.occlusion;
 #ifdef CLEARCOAT
@@ -371,6 +402,10 @@ void main() {
 #endif
     FacetEnvironmentLight env = facet_environment_light(s, v, NdotV, lut, irradiance_map, specular_map, frame.ibl.x,
                                                         multiscatter, lookups);
+#ifdef FACET_SHEEN
+    vec3 env_sheen = facet_environment_sheen(s, NdotV, env.irradiance, env.diffuse, env.specular);
+    env.specular += env_sheen;
+#endif
     facet_environment_clearcoat(s, v, lut, brdf_lut, specular_map, specular_levels, frame.ibl.x, env);
     diffuse += env.diffuse;
     specular += env.specular;
@@ -422,6 +457,8 @@ void main() {
     out_color = vec4(s.iridescence, s.iridescence_ior, s.iridescence_thickness, 1.0);
 #elif VIEW == VIEW_ANISOTROPY
     out_color = vec4(s.anisotropy_t, s.anisotropy);
+#elif VIEW == VIEW_SHEEN
+    out_color = vec4(s.sheen_color, s.sheen_roughness);
 #elif defined(UNLIT)
     out_color = vec4(0.0, 0.0, 0.0, 1.0);  // D, F, G: no BRDF
 #else

@@ -32,6 +32,7 @@ struct MaterialData {
     vec4 specular_color;  // KHR_materials_specular's colour (rgb)
     vec4 iridescence;     // KHR_materials_iridescence: factor, film ior, thickness minimum, maximum (nm)
     vec4 anisotropy;      // KHR_materials_anisotropy: strength, rotation (radians)
+    vec4 sheen;           // KHR_materials_sheen: colour (rgb, linear), roughness (a)
 };
 layout(binding = 3, std430) readonly buffer Materials { MaterialData materials[]; };
 
@@ -52,6 +53,8 @@ layout(binding = 17) uniform sampler2D specular_color_map;       // RGB (sRGB) x
 layout(binding = 18) uniform sampler2D iridescence_map;          // KHR_materials_iridescence: R x factor
 layout(binding = 19) uniform sampler2D iridescence_thickness_map;  // G: minimum .. maximum thickness
 layout(binding = 20) uniform sampler2D anisotropy_map;           // KHR_materials_anisotropy: RG direction, B strength
+layout(binding = 21) uniform sampler2D sheen_color_map;          // KHR_materials_sheen: RGB (sRGB) x sheenColorFactor
+layout(binding = 22) uniform sampler2D sheen_roughness_map;      // A x sheenRoughnessFactor
 
 layout(push_constant) uniform Draw {
     uint instance;

@@ -7,10 +7,12 @@
 // added in closed form. The BRDF is the forward pass's model (facet/shading.glsl's
 // facet_reflect_light, glTF's or the thesis'). The environment is piecewise constant per texel,
 // as in the brute-force sums of the tests.
-// KHR_materials_iridescence's film and KHR_materials_anisotropy's stretch are shaded wherever
-// their views say so.
+// KHR_materials_iridescence's film, KHR_materials_anisotropy's stretch and KHR_materials_sheen's
+// layer are shaded wherever their views say so; the sheen's lobe (wide, strongest at grazing
+// angles) has a strategy of its own: directions uniform over the hemisphere.
 #define FACET_IRIDESCENCE 1
 #define FACET_ANISOTROPY 1
+#define FACET_SHEEN 1
 #include "facet/shading.glsl"
 #include "ibl/equirect.glsl"
 #include "ibl/sampling.glsl"
@@ -36,6 +38,7 @@ layout(binding = 12) uniform sampler2D clearcoat_view;         // KHR_materials_
 layout(binding = 13) uniform sampler2D clearcoat_normal_view;  // the clear coat's normal
 layout(binding = 14) uniform sampler2D iridescence_view;       // KHR_materials_iridescence: weight, ior, thickness
 layout(binding = 15) uniform sampler2D anisotropy_view;        // KHR_materials_anisotropy: direction, strength
+layout(binding = 16) uniform sampler2D sheen_view;             // KHR_materials_sheen: colour, roughness
 
 layout(push_constant) uniform Params {
     vec4 camera_position;  // xyz
@@ -86,6 +89,7 @@ struct Surface {
     float NdotV;
     float p_specular;  // probability of sampling the specular lobe (of the surface below a clear coat)
     float p_coat;      // probability of sampling the clear coat's lobe
+    float p_sheen;     // probability of sampling the sheen's (uniform over the hemisphere)
 };
 
 // BRDF x cos x radiance arriving along l (facet/shading.glsl's composition).
@@ -111,7 +115,7 @@ float brdf_pdf(Surface s, vec3 l) {
     if (coat_NdotL > 0.0)
         pdf += s.p_coat * ggx_sample_pdf(clamp(dot(s.shading.clearcoat_n, h), 0.0, 1.0), dot(h, s.v),
                                          s.shading.clearcoat_roughness);
-    return pdf;
+    return (1.0 - s.p_sheen) * pdf + (NdotL > 0.0 ? s.p_sheen / (2.0 * PI) : 0.0);
 }
 
 // Randomised quasi-Monte Carlo: sample i of a batch takes the i-th point of a 7-D
@@ -126,6 +130,14 @@ float kronecker(uint i, uint dim, float shift) {
 }
 
 vec3 sample_brdf(Surface s, vec3 u) {
+    if (u.z < s.p_sheen) {
+        // Uniform over the hemisphere of n: cos theta = u.x.
+        vec3 t, b;
+        facet_tangent_frame(s.shading.n, t, b);
+        float r = sqrt(max(1.0 - u.x * u.x, 0.0));
+        return t * (r * cos(2.0 * PI * u.y)) + b * (r * sin(2.0 * PI * u.y)) + s.shading.n * u.x;
+    }
+    u.z = (u.z - s.p_sheen) / (1.0 - s.p_sheen);
     if (u.z < s.p_coat) {
         // The clear coat's lobe, around its own normal.
         vec3 ct, cb;
@@ -202,6 +214,12 @@ void main() {
     if (film.r > 0.0) facet_surface_iridescence(s.shading, film.r, film.g, film.b);
     vec4 stretch = texelFetch(anisotropy_view, pixel, 0);
     if (stretch.a > 0.0) facet_surface_anisotropy(s.shading, stretch.a, stretch.xyz);
+    vec4 sheen = texelFetch(sheen_view, pixel, 0);
+    s.p_sheen = 0.0;
+    if (facet_max3(sheen.rgb) > 0.0) {
+        facet_surface_sheen(s.shading, sheen.rgb, sheen.a);
+        s.p_sheen = 0.25;
+    }
     vec3 p = position.xyz;
     // An unlit surface (KHR_materials_unlit, points, lines: the metallic view's alpha 0) is
     // its base colour and emission, exactly, with nothing to sample.

@@ -5,7 +5,12 @@
 // and issue 13's per-group measurement (final_image_accuracy.h) on synthetic frames.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include <facet/reference/final_image_accuracy.h>
@@ -266,6 +271,103 @@ TEST(FinalImageTruth, ThesisMatchesTheSpheresTruth) {
             EXPECT_NEAR(got[c], spheres.bilinear[k][c], 1e-9 * (1 + std::abs(spheres.bilinear[k][c])))
                 << "sphere " << samples[k].sphere << " channel " << c;
     }
+}
+
+// KHR_materials_sheen's lobe alone (over a material that reflects nothing) under uniform
+// light: the texel sum of its D V (n.l) equals its directional albedo, which sheen_albedo
+// integrates another way (over half vectors); the colour scales it per channel.
+TEST(FinalImageTruth, SheenAloneReflectsItsDirectionalAlbedo) {
+    TruthMaterial sheen;
+    sheen.albedo = {0, 0, 0};
+    sheen.specular_weight = 0;
+    sheen.sheen_color = {1, 0.5, 0.25};
+    for (double r : {0.3, 0.5, 1.0})
+        for (double c : {0.3, 0.6, 0.95}) {
+            sheen.sheen_roughness = r;
+            const Vec3 got = environment_truth(uniform_light(), BrdfModel::gltf, sheen, {0, 1, 0}, view_at(c));
+            const double e = sheen_albedo(c, r);
+            for (size_t k = 0; k < 3; ++k)
+                EXPECT_NEAR(got[k], sheen.sheen_color[k] * e, furnace_tolerance) << "r " << r << " n.v " << c;
+        }
+    // The lobe is a back- and forward-scattering one: brightest at grazing views.
+    EXPECT_GT(sheen_albedo(0.2, 0.5), sheen_albedo(0.9, 0.5));
+}
+
+// The albedo scaling keeps the energy: a white sheen over a white Lambertian surface (no
+// specular lobe) reflects at most 1 under uniform light, and more than the sheen alone.
+TEST(FinalImageTruth, SheenOverWhiteLambertKeepsTheEnergy) {
+    for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis})
+        for (double r : {0.4, 0.7, 1.0})
+            for (double c : {0.3, 0.6, 0.95}) {
+                TruthMaterial white;
+                white.specular_weight = 0;
+                white.sheen_color = {1, 1, 1};
+                white.sheen_roughness = r;
+                const Vec3 got = environment_truth(uniform_light(), model, white, {0, 1, 0}, view_at(c));
+                EXPECT_LE(got[0], 1.0 + furnace_tolerance) << brdf_model_name(model) << " r " << r << " n.v " << c;
+                EXPECT_GT(got[0], sheen_albedo(c, r) + 0.2) << brdf_model_name(model) << " r " << r << " n.v " << c;
+            }
+}
+
+// The shaders' fits (shaders/facet/sheen_albedo.glsl, written by scripts/make_sheen_albedo.py
+// from a quadrature of its own: per roughness row j / 16 a polynomial of sqrt(n.v) in log
+// space, the exponents blended linearly in r) against the truth's integral, where the value
+// is at most 1.5, n.v from 0.0088 and roughness from 0.25 (the tests' domain): the sheen's
+// albedo E within 0.015 or 3% of it, and M, the cosine-weighted mean over n.l of
+// min(1, max(E(n.v), E(n.l))) (the environment's diffuse scaling), within 0.02 (measured: 0.016, 0.017).
+std::vector<std::vector<double>> sheen_fit_rows(const std::string& prefix) {
+    std::ifstream file(std::string(FACET_SOURCE_DIR) + "/shaders/facet/sheen_albedo.glsl");
+    std::vector<std::vector<double>> rows;  // j, c0 .. c5
+    for (std::string line; std::getline(file, line);) {
+        if (line.rfind("#define " + prefix, 0) != 0) continue;
+        const size_t at = line.find("FACET_SHEEN_ROW(");
+        if (at == std::string::npos) continue;
+        std::stringstream items(line.substr(at + 16));
+        std::vector<double> row;
+        for (std::string item; std::getline(items, item, ',');) row.push_back(std::stod(item));
+        if (row.size() == 7) rows.push_back(row);
+    }
+    return rows;
+}
+
+double sheen_fit(const std::vector<std::vector<double>>& rows, double mu, double r) {
+    const double s = std::sqrt(std::clamp(mu, 1e-3, 1.0)), y = r * 16;
+    double weights = 0, exponent = 0;  // the coefficients blended linearly in r, one exp
+    for (const std::vector<double>& c : rows) {
+        const double w = std::max(1 - std::abs(y - c[0]), 0.0);
+        exponent += w * (c[1] + s * (c[2] + s * (c[3] + s * (c[4] + s * (c[5] + s * c[6])))));
+        weights += w;
+    }
+    return weights * std::exp(exponent / std::max(weights, 1e-6));
+}
+
+TEST(FinalImageTruth, ShadersSheenAlbedoFitsMatchTheTruth) {
+    const auto albedo_rows = sheen_fit_rows("FACET_SHEEN_ROWS_"), mean_rows = sheen_fit_rows("FACET_SHEEN_MEAN_ROWS_");
+    ASSERT_EQ(albedo_rows.size(), 16u);
+    ASSERT_EQ(mean_rows.size(), 16u);
+    int compared = 0;
+    double worst = 0, worst_mean = 0;
+    for (int j = 8; j <= 32; ++j)
+        for (int i = 3; i <= 32; ++i) {
+            const double r = j / 32.0, mu = i * i / 1024.0;
+            const double want = sheen_albedo(mu, r), got = sheen_fit(albedo_rows, mu, r);
+            if (want > 1.5) continue;
+            EXPECT_NEAR(got, want, std::max(0.015, 0.03 * want)) << "r " << r << " n.v " << mu;
+            worst = std::max(worst, std::abs(got - want));
+            // M by the midpoint rule in x = sqrt(n.l) (2 t dt = 4 x^3 dx).
+            double mean = 0;
+            for (int k = 0; k < 256; ++k) {
+                const double x = (k + 0.5) / 256;
+                mean += std::max(std::min(want, 1.0), std::min(sheen_albedo(x * x, r), 1.0)) * 4 * x * x * x / 256;
+            }
+            const double got_mean = sheen_fit(mean_rows, mu, r);
+            EXPECT_NEAR(got_mean, mean, 0.02) << "r " << r << " n.v " << mu;
+            worst_mean = std::max(worst_mean, std::abs(got_mean - mean));
+            ++compared;
+        }
+    std::printf("sheen fits: %d points, worst absolute distance to the truth: E %.4f, M %.4f\n", compared, worst,
+                worst_mean);
+    EXPECT_GT(compared, 600);
 }
 
 }  // namespace

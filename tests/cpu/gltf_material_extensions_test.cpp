@@ -12,6 +12,7 @@
 #include <string>
 
 #include <facet/scene/gltf_loader.h>
+#include <facet/scene/scene_needs.h>
 #include "support/gltf_files.h"
 
 namespace facet {
@@ -27,7 +28,7 @@ struct TempDir : test::GltfTempDir {
 Result<Scene> load_material(const TempDir& dir, const std::string& extensions) {
     const std::string text = R"({"asset": {"version": "2.0"},
   "extensionsUsed": ["KHR_materials_ior", "KHR_materials_specular", "KHR_materials_unlit", "KHR_materials_clearcoat",
-                     "KHR_materials_iridescence", "KHR_materials_anisotropy"],
+                     "KHR_materials_iridescence", "KHR_materials_anisotropy", "KHR_materials_sheen"],
   "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
   "bufferViews": [{"buffer": 0, "byteLength": 36}],
   "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}],
@@ -157,6 +158,38 @@ TEST(GltfMaterialExtensions, AnisotropyReadsItsFactors) {
     EXPECT_TRUE(scene->warnings.empty());
 }
 
+// KHR_materials_sheen's defaults (colour black: no layer; roughness 0) and values; unlit
+// (which the extension excludes) clears it.
+TEST(GltfMaterialExtensions, SheenReadsItsFactors) {
+    TempDir dir;
+    const Result<Scene> plain = load_material(dir, "");
+    ASSERT_TRUE(plain.ok()) << plain.error().message;
+    EXPECT_FALSE(plain->materials[0].has_sheen());
+    const Result<Scene> absent = load_material(dir, R"("KHR_materials_sheen": {})");
+    ASSERT_TRUE(absent.ok()) << absent.error().message;
+    EXPECT_EQ(absent->materials[0].sheen_color, glm::vec3(0.0f));
+    EXPECT_EQ(absent->materials[0].sheen_roughness, 0.0f);
+    EXPECT_FALSE(absent->materials[0].has_sheen());
+    const Result<Scene> scene = load_material(
+        dir, R"("KHR_materials_sheen": {"sheenColorFactor": [0.9, 0.25, 0], "sheenRoughnessFactor": 0.35})");
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    const Material& m = scene->materials[0];
+    EXPECT_EQ(m.sheen_color, glm::vec3(0.9f, 0.25f, 0.0f));
+    EXPECT_EQ(m.sheen_roughness, 0.35f);
+    EXPECT_TRUE(m.has_sheen());
+    EXPECT_FALSE(m.sheen_color_texture.valid());
+    EXPECT_FALSE(m.sheen_roughness_texture.valid());
+    EXPECT_TRUE(scene->warnings.empty()) << scene->warnings[0];
+    // The material is a pure metal (glTF's default metallicFactor 1): only its sheen reads the
+    // irradiance (facet/sheen.glsl), so the bake makes it for the sheen alone.
+    EXPECT_FALSE(scene_needs(*plain).diffuse);
+    EXPECT_TRUE(scene_needs(*scene).diffuse);
+    const Result<Scene> unlit =
+        load_material(dir, R"("KHR_materials_sheen": {"sheenColorFactor": [1, 1, 1]}, "KHR_materials_unlit": {})");
+    ASSERT_TRUE(unlit.ok()) << unlit.error().message;
+    EXPECT_FALSE(unlit->materials[0].has_sheen());
+}
+
 TEST(GltfMaterialExtensions, InvalidValuesAreErrorsNamingTheMaterial) {
     TempDir dir;
     const std::string file = (dir.path / "model.gltf").string();
@@ -190,6 +223,18 @@ TEST(GltfMaterialExtensions, InvalidValuesAreErrorsNamingTheMaterial) {
          "material 'glass': KHR_materials_anisotropy.anisotropyStrength -0.1 is outside [0, 1]"},
         {R"("KHR_materials_anisotropy": {"anisotropyRotation": [1]})",
          "material 'glass': KHR_materials_anisotropy.anisotropyRotation must be a finite number"},
+        {R"("KHR_materials_sheen": {"sheenColorFactor": [1, 1.5, 0]})",
+         "material 'glass': KHR_materials_sheen.sheenColorFactor 1.5 is outside [0, 1]"},
+        {R"("KHR_materials_sheen": {"sheenColorFactor": [1, 1]})",
+         "material 'glass': KHR_materials_sheen.sheenColorFactor must have 3 numbers"},
+        {R"("KHR_materials_sheen": {"sheenColorFactor": [1, "red", 1]})",
+         "material 'glass': KHR_materials_sheen.sheenColorFactor must have 3 finite numbers"},
+        {R"("KHR_materials_sheen": {"sheenRoughnessFactor": -0.2})",
+         "material 'glass': KHR_materials_sheen.sheenRoughnessFactor -0.2 is outside [0, 1]"},
+        {R"("KHR_materials_sheen": {"sheenColorTexture": {"index": 1}})",
+         "material 'glass': KHR_materials_sheen: sheenColorTexture texture 1 out of range (0 textures)"},
+        {R"("KHR_materials_sheen": {"sheenRoughnessTexture": {"index": 0, "texCoord": "one"}})",
+         "material 'glass': KHR_materials_sheen.sheenRoughnessTexture.texCoord must be an integer"},
         {R"("KHR_materials_clearcoat": {"clearcoatFactor": 2})",
          "material 'glass': KHR_materials_clearcoat.clearcoatFactor 2 is outside [0, 1]"},
         {R"("KHR_materials_clearcoat": {"clearcoatRoughnessFactor": -0.5})",

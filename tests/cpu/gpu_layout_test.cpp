@@ -27,11 +27,12 @@ namespace {
 // the C++ layout is the GLSL one with no padding.
 static_assert(sizeof(GpuInstance) == 128);
 static_assert(offsetof(GpuInstance, world) == 0 && offsetof(GpuInstance, normal_matrix) == 64);
-static_assert(sizeof(GpuMaterial) == 128);
+static_assert(sizeof(GpuMaterial) == 144);
 static_assert(offsetof(GpuMaterial, base_color) == 0 && offsetof(GpuMaterial, emissive_f0) == 16 &&
               offsetof(GpuMaterial, factors) == 32 && offsetof(GpuMaterial, extra) == 48 &&
               offsetof(GpuMaterial, clearcoat) == 64 && offsetof(GpuMaterial, specular_color) == 80 &&
-              offsetof(GpuMaterial, iridescence) == 96 && offsetof(GpuMaterial, anisotropy) == 112);
+              offsetof(GpuMaterial, iridescence) == 96 && offsetof(GpuMaterial, anisotropy) == 112 &&
+              offsetof(GpuMaterial, sheen) == 128);
 
 std::vector<uint32_t> compile(ShaderStage stage, const char* name, std::vector<ShaderDefine> defines = {}) {
     ShaderCompiler compiler;
@@ -85,7 +86,8 @@ TEST(GpuLayout, MaterialDataMatchesGpuMaterial) {
                    {"clearcoat", offsetof(GpuMaterial, clearcoat)},
                    {"specular_color", offsetof(GpuMaterial, specular_color)},
                    {"iridescence", offsetof(GpuMaterial, iridescence)},
-                   {"anisotropy", offsetof(GpuMaterial, anisotropy)}});
+                   {"anisotropy", offsetof(GpuMaterial, anisotropy)},
+                   {"sheen", offsetof(GpuMaterial, sheen)}});
 }
 
 // The forward pass, the reference pass and the skybox read one packed light

@@ -118,7 +118,9 @@ TEST(ShaderReflection, ForwardVertexAndFragmentMergeIntoOneLayout) {
                      {17, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                      {18, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},   // KHR_materials_iridescence's two
                      {19, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                     {20, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},   // KHR_materials_anisotropy's
+                     {20, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},    // KHR_materials_anisotropy's
+                     {21, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},    // KHR_materials_sheen's two
+                     {22, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
                     "forward");
     EXPECT_EQ(merged->push_constant_bytes, 8u);  // uint instance, uint material
 }

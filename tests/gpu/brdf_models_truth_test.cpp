@@ -363,6 +363,7 @@ struct ExtensionCase {
     std::function<void(test::TruthMaterial&, std::span<const float>, size_t)> truth;
     double default_bound[2];  // glTF, thesis
     double reference_bound;
+    double light_bound = 2e-3;  // a directional light, pixel by pixel
 };
 
 void check_extension_against_truth(const ExtensionCase& e) {
@@ -402,7 +403,7 @@ void check_extension_against_truth(const ExtensionCase& e) {
         std::printf("%s model, %s, one directional light: %d pixels, worst relative error %.2e (the truth without "
                     "it: %.2f)\n", brdf_model_name(model), e.name, c.checked, c.worst, c.worst_without_layer);
         EXPECT_GT(c.checked, 1000);
-        EXPECT_LT(c.worst, 2e-3) << brdf_model_name(model);
+        EXPECT_LT(c.worst, e.light_bound) << brdf_model_name(model);
         EXPECT_GT(c.worst_without_layer, 0.1) << "the extension changes the image";
 
         RenderJob env_job = spheres_job(model, sky.path);
@@ -496,6 +497,142 @@ TEST(BrdfModelsTruth, AnisotropicLobeMatchesTheTruthUnderALightAndTheEnvironment
     e.default_bound[1] = 0.08;
     e.reference_bound = 0.04;
     check_extension_against_truth(e);
+}
+
+// KHR_materials_sheen: colour (0.9, 0.6, 0.3) and roughness 0.5 on every sphere, both models;
+// the view reports the layer, the truth's lobe (Charlie D and the fitted visibility) and its
+// albedo scaling (E integrated in double precision) are written from the extension's formulas.
+// Measured: a directional light 9.2e-3 off pixel by pixel (the lobe is exact, the albedo
+// scaling's E is the shaders' fit: within 0.016 of the integral), bounded at 1.5%; the sun sky's
+// worst group 4.9% (glTF) / 5.2% (thesis) for the default shading (E(n.v) x the irradiance for
+// the lobe, the scalings at n.v and the diffuse's cosine-weighted mean), bounded at 7%, and
+// 2.1% for the reference mode, bounded at 3%.
+TEST(BrdfModelsTruth, SheenLayerMatchesTheTruthUnderALightAndTheEnvironment) {
+    const glm::vec3 colour(0.9f, 0.6f, 0.3f);
+    ExtensionCase e;
+    e.name = "sheen";
+    e.material = [&](Material& m) {
+        m.sheen_color = colour;
+        m.sheen_roughness = 0.5f;
+    };
+    e.view = View::sheen;
+    e.attach = [](test::FinalImageViews& v, std::span<const float> view) { v.sheen = view; };
+    e.check_view = [&](std::span<const float> view, size_t p) {
+        ASSERT_FLOAT_EQ(view[p * 4], colour.r) << p;
+        ASSERT_FLOAT_EQ(view[p * 4 + 1], colour.g) << p;
+        ASSERT_FLOAT_EQ(view[p * 4 + 2], colour.b) << p;
+        ASSERT_FLOAT_EQ(view[p * 4 + 3], 0.5f) << p;
+    };
+    e.truth = [&](test::TruthMaterial& m, std::span<const float>, size_t) {
+        m.sheen_color = {colour.r, colour.g, colour.b};
+        m.sheen_roughness = 0.5;
+    };
+    e.default_bound[0] = e.default_bound[1] = 0.07;
+    e.reference_bound = 0.03;
+    e.light_bound = 0.015;
+    check_extension_against_truth(e);
+}
+
+// The layers' order: a clear coat over the sheen over the material (the extension: "clearcoat
+// is layered on top of sheen"), both models, a directional light pixel by pixel against the
+// truth's layering (measured 7.6e-3, the sheen's fitted E; bound 1.5%).
+TEST(BrdfModelsTruth, SheenUnderAClearcoatMatchesTheTruthUnderALight) {
+    Context& context = test::gpu();
+    const uint32_t messages = context.validation_message_count();
+    for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis}) {
+        RenderJob job = spheres_job(model, "none");
+        const Light light = directional_light();
+        job.extra_lights = {light};
+        auto session = spheres_with(context, job, [](Material& m) {
+            m.clearcoat = 0.8f;
+            m.clearcoat_roughness = 0.3f;
+            m.sheen_color = glm::vec3(1.0f, 0.7f, 0.4f);
+            m.sheen_roughness = 0.6f;
+        });
+        ASSERT_TRUE(session) << session.error().message;
+        auto frame = (*session)->render_frame();
+        ASSERT_TRUE(frame) << frame.error().message;
+        const DirectionalCheck c =
+            check_directional(views_of(*frame, frame->hdr), (*session)->camera().position, light, model,
+                              [](test::TruthMaterial& m, size_t) {
+                                  m.clearcoat = 0.8;
+                                  m.clearcoat_roughness = 0.3;
+                                  m.sheen_color = {1.0, 0.7, 0.4};
+                                  m.sheen_roughness = 0.6;
+                              });
+        std::printf("%s model, sheen under a clear coat, one directional light: %d pixels, worst relative error %.2e\n",
+                    brdf_model_name(model), c.checked, c.worst);
+        EXPECT_GT(c.checked, 1000);
+        EXPECT_LT(c.worst, 0.015) << brdf_model_name(model);  // the sheen's fitted E, as above
+        EXPECT_GT(c.worst_without_layer, 0.1) << "the layers change the image";
+    }
+    EXPECT_EQ(context.validation_message_count(), messages);
+}
+
+// The sheen's albedo scaling in the white furnace: a white Lambertian sphere (no specular
+// lobe) with a white sheen of roughness 0.5 under uniform radiance 1, both models, at n.v >= 0.2.
+// The extension's scaling (the truth's min over n.v and n.l) keeps the energy at most 1 (it
+// reflects 0.88 at n.v 0.2); the default shading scales the diffuse by the min form's mean over
+// the cosine lobe (fitted) and matches it within 0.52% (measured; bound 1.5%); with the
+// simplified scaling at n.v alone it was 1 everywhere, 13% above the truth.
+TEST(BrdfModelsTruth, SheenOverAWhiteBaseKeepsTheEnergyInTheFurnace) {
+    Context& context = test::gpu();
+    const uint32_t messages = context.validation_message_count();
+    const test::TexelLights uniform = test::texel_lights(test::uniform_sky(512, 256, 1.0f));
+    for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis}) {
+        RenderJob job;
+        job.model = "builtin:sphere";
+        job.env = "builtin:white";
+        job.frame.width = job.frame.height = 96;
+        job.frame.skybox = false;
+        job.frame.samples = 1;
+        job.frame.brdf = model;
+        job.frame.views = {View::normal, View::position};
+        auto scene = builtin_scene("builtin:sphere");
+        ASSERT_TRUE(scene) << scene.error().message;
+        for (Material& m : scene->materials) {
+            m.base_color = glm::vec4(1.0f);
+            m.metallic = 0.0f;
+            m.specular_factor = 0.0f;
+            m.sheen_color = glm::vec3(1.0f);
+            m.sheen_roughness = 0.5f;
+        }
+        auto session = RenderSession::create(context, job, std::move(*scene));
+        ASSERT_TRUE(session) << session.error().message;
+        auto frame = (*session)->render_frame();
+        ASSERT_TRUE(frame) << frame.error().message;
+        const glm::vec3 eye = (*session)->camera().position;
+        const std::vector<float>& normal = frame->views.at(0).second;
+        const std::vector<float>& position = frame->views.at(1).second;
+        test::TruthMaterial white;
+        white.specular_weight = 0;
+        white.sheen_color = {1, 1, 1};
+        white.sheen_roughness = 0.5;
+        int checked = 0;
+        double highest = 0, worst = 0, lowest_truth = 1;
+        for (size_t p = 0; p < size_t(job.frame.width) * job.frame.height; p += 3) {
+            if (normal[p * 4 + 3] < 1.0f || frame->hdr[p * 4 + 3] < 1.0f) continue;
+            test::Vec3 n{normal[p * 4], normal[p * 4 + 1], normal[p * 4 + 2]};
+            test::Vec3 v{eye.x - position[p * 4], eye.y - position[p * 4 + 1], eye.z - position[p * 4 + 2]};
+            const double nl = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            const double vl = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+            for (size_t c = 0; c < 3; ++c) n[c] /= nl, v[c] /= vl;
+            if (n[0] * v[0] + n[1] * v[1] + n[2] * v[2] < 0.2) continue;
+            const double truth = test::environment_truth(uniform, model, white, n, v)[1];
+            for (size_t c = 0; c < 3; ++c) highest = std::max(highest, double(frame->hdr[p * 4 + c]));
+            worst = std::max(worst, std::abs(frame->hdr[p * 4 + 1] - truth) / truth);
+            lowest_truth = std::min(lowest_truth, truth);
+            EXPECT_LE(truth, 1.005) << "the truth's scaling keeps the energy";
+            ++checked;
+        }
+        std::printf("%s model, white sheen over white Lambert, uniform light: %d pixels, largest value %.5f, "
+                    "lowest truth %.4f, worst relative distance to the truth %.2e\n", brdf_model_name(model), checked,
+                    highest, lowest_truth, worst);
+        EXPECT_GT(checked, 500);
+        EXPECT_LE(highest, 1.002);
+        EXPECT_LT(worst, 0.015);
+    }
+    EXPECT_EQ(context.validation_message_count(), messages);
 }
 
 }  // namespace

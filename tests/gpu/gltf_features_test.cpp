@@ -513,6 +513,47 @@ TEST_F(GltfFeaturesTest, RotatedNormalMapTurnsItsTangentFrame) {
     EXPECT_NEAR(turned.z, 0.8f, 0.02f);
 }
 
+// KHR_materials_sheen's two textures reach the layer, as the view the reference mode reads
+// shows: colour = sheenColorFactor x the colour texture's RGB (sRGB), roughness =
+// sheenRoughnessFactor x the roughness texture's A (2x1 textures, nearest: each half of the
+// quad its texel); the roughness texture's KHR_texture_transform (offset 0.5 in u, repeat)
+// swaps the halves it reads.
+TEST_F(GltfFeaturesTest, SheenTexturesReachTheLayer) {
+    const unsigned char colours[] = {255, 128, 0, 255, 64, 255, 255, 255};  // RGB | RGB
+    ASSERT_TRUE(write_png(dir.file("sheen.png"), 2, 1, colours));
+    const unsigned char alphas[] = {255, 255, 255, 255, 255, 255, 255, 64};  // A 1 | A 64/255
+    ASSERT_TRUE(write_png(dir.file("sheen_roughness.png"), 2, 1, alphas));
+    std::vector<float> uv0;
+    for (size_t i = 0; i < 4; ++i) uv0.insert(uv0.end(), {(kQuad[3 * i] + 1.0f) / 2.0f, (1.0f - kQuad[3 * i + 1]) / 2.0f});
+    GltfBuilder b = quad_builder();
+    b.add(uv0, kFloat, "VEC2", 4);
+    b.add(std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, kFloat, "VEC3", 4);  // NORMAL
+    const std::string members =
+        mesh_file(R"("POSITION": 0, "TEXCOORD_0": 2, "NORMAL": 3)", 1,
+                  R"({"extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, 0.8, 0.5],
+                      "sheenRoughnessFactor": 0.9, "sheenColorTexture": {"index": 0},
+                      "sheenRoughnessTexture": {"index": 1,
+                          "extensions": {"KHR_texture_transform": {"offset": [0.5, 0]}}}}}})") +
+        R"(, "textures": [{"source": 0, "sampler": 0}, {"source": 1, "sampler": 0}],
+  "images": [{"uri": "sheen.png"}, {"uri": "sheen_roughness.png"}], "samplers": [{"magFilter": 9728, "minFilter": 9728}],
+  "extensionsUsed": ["KHR_materials_sheen", "KHR_texture_transform"])";
+    RenderJob views = job("builtin:white");
+    views.frame.views = {View::sheen};
+    const RenderedImages images = render(b.write(dir, "sheen_textured", members), views, false);
+    ASSERT_EQ(images.views.size(), 1u);
+    auto srgb = [](double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); };
+    const Pixel left = at(images.views[0].second, kSize / 2 - 8, kSize / 2);
+    const Pixel right = at(images.views[0].second, kSize / 2 + 8, kSize / 2);
+    EXPECT_NEAR(left.r, 1.0f, 2e-3f);
+    EXPECT_NEAR(left.g, 0.8 * srgb(128.0 / 255.0), 2e-3f);
+    EXPECT_NEAR(left.b, 0.0f, 2e-3f);
+    EXPECT_NEAR(left.a, 0.9f * 64.0f / 255.0f, 2e-3f);  // the right texel's A
+    EXPECT_NEAR(right.r, srgb(64.0 / 255.0), 2e-3f);
+    EXPECT_NEAR(right.g, 0.8f, 2e-3f);
+    EXPECT_NEAR(right.b, 0.5f, 2e-3f);
+    EXPECT_NEAR(right.a, 0.9f, 2e-3f);  // the left texel's A
+}
+
 // KHR_materials_clearcoat's three textures reach the layer, as the views the reference mode
 // reads show: weight = clearcoatFactor x R and roughness = clearcoatRoughnessFactor x G
 // (a 2x1 texture, nearest: each half of the quad its texel), and the layer's normal map

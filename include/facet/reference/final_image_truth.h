@@ -29,7 +29,20 @@ struct TruthMaterial {
     // surface's plane, normalised), strength `anisotropy`.
     double anisotropy = 0;
     Vec3 anisotropy_t{1, 0, 0};
+    // KHR_materials_sheen: a layer of colour sheen_color (black: none) and roughness
+    // sheen_roughness over the material (under a clear coat).
+    Vec3 sheen_color{0, 0, 0};
+    double sheen_roughness = 0;
 };
+
+// KHR_materials_sheen's lobe (sheenColor 1): the "Charlie" D (Conty Estevez and Kulla 2017,
+// alpha = max(r^2, 1e-6)) times the extension's visibility with the paper's fitted Lambda,
+// 1 / ((1 + Lambda(n.v) + Lambda(n.l)) 4 n.v n.l), for cosines in (0, 1].
+double sheen_dv(double n_h, double n_v, double n_l, double roughness);
+// Its directional albedo E(n.v, r): the integral of sheen_dv (n.l) over the hemisphere, by
+// the midpoint rule over half vectors (512 x 128, in a variable that follows D), tabulated
+// per roughness at 257 nodes in sqrt(n.v) (computed once per roughness; thread-safe).
+double sheen_albedo(double n_v, double roughness);
 
 // The extension's F_iridescence (Belcour and Barla 2017 as KHR_materials_iridescence defines
 // it): the reflectance of a film of index film_ior and thickness_nm between a medium of
@@ -55,6 +68,10 @@ Vec3 thin_film_fresnel(double outside_ior, double film_ior, double cos1, double 
 //          along b = n x t: 1 / (pi at ab ((t.h/at)^2 + (b.h/ab)^2 + (n.h)^2)^2); glTF's V the
 //          anisotropic height-correlated Smith, 0.5 / (n.l |(at t.v, ab b.v, n.v)| + n.v |(at t.l,
 //          ab b.l, n.l)|); the thesis keeps its isotropic G.
+//  sheen (both models, KHR_materials_sheen's layering): f_sheen (n.l) + f (n.l) s with
+//          f_sheen = sheenColor sheen_dv and the albedo scaling s = min(1 - max3(sheenColor)
+//          min(E(n.v), 1), 1 - max3(sheenColor) min(E(n.l), 1)), E = sheen_albedo (taken at
+//          most 1: the fitted Lambda's lobe exceeds 1 at grazing angles for small roughness);
 //  clearcoat (both models, the extension's layering): f (1 - c Fc(v.h)) (n.l) + c Fc(v.h)
 //          D V of the model's specular lobe at the layer's roughness (n_c.l), Fc =
 //          Schlick(0.04, v.h), zero where l is below both n and the layer's normal n_c.

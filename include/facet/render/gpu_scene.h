@@ -33,6 +33,8 @@ enum class TextureSlot {
     iridescence,            // KHR_materials_iridescence: R
     iridescence_thickness,  // G
     anisotropy,             // KHR_materials_anisotropy: RG direction, B strength
+    sheen_color,            // KHR_materials_sheen: RGB, sRGB
+    sheen_roughness,        // A
     count
 };
 
@@ -50,6 +52,7 @@ struct GpuMaterial {
     glm::vec4 specular_color;  // KHR_materials_specular's colour (rgb)
     glm::vec4 iridescence;     // KHR_materials_iridescence: factor, film ior, thickness minimum, maximum (nm)
     glm::vec4 anisotropy;      // KHR_materials_anisotropy: strength, rotation (radians)
+    glm::vec4 sheen;           // KHR_materials_sheen: colour (rgb, linear), roughness (a)
 };
 
 struct GpuTexture {

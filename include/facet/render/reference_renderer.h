@@ -40,6 +40,7 @@ struct ReferenceSurface {
     const Image* clearcoat_normal = nullptr;  // View::clearcoat_normal
     const Image* iridescence = nullptr;       // View::iridescence: weight, film ior, thickness (nm)
     const Image* anisotropy = nullptr;        // View::anisotropy: direction, strength
+    const Image* sheen = nullptr;             // View::sheen: colour, roughness
 };
 
 struct ReferenceStats {

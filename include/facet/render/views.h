@@ -29,6 +29,7 @@ enum class View : int {
     clearcoat_normal = 17,  // the clear coat's unit normal, world space
     iridescence = 18,       // KHR_materials_iridescence's weight (r), film ior (g), thickness in nm (b)
     anisotropy = 19,        // KHR_materials_anisotropy's direction (rgb, world) and strength (a)
+    sheen = 20,             // KHR_materials_sheen's colour (rgb, linear) and roughness (a)
 };
 
 const char* view_name(View view);

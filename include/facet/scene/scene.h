@@ -114,6 +114,16 @@ struct Material {
     float anisotropy = 0.0f;
     float anisotropy_rotation = 0.0f;
     TextureRef anisotropy_texture;  // linear: RG direction, B strength
+    // KHR_materials_sheen: a layer of fibres over the material (under a clear coat), its
+    // colour (linear; black: no layer) and its own roughness (alpha = sheen_roughness^2 in the
+    // Charlie distribution); the material below is scaled by 1 - max(sheen_color) E_sheen
+    // (the extension's albedo scaling). The colour texture's RGB and the roughness texture's A
+    // multiply the factors.
+    glm::vec3 sheen_color{0.0f};
+    float sheen_roughness = 0.0f;
+    TextureRef sheen_color_texture;      // sRGB: RGB
+    TextureRef sheen_roughness_texture;  // linear: A
+    bool has_sheen() const { return sheen_color.r > 0.0f || sheen_color.g > 0.0f || sheen_color.b > 0.0f; }
 
     // The vertex tangents serve the normal maps: the surface's, else the clear coat's.
     bool has_normal_map() const { return normal_texture.valid() || clearcoat_normal_texture.valid(); }

@@ -8,7 +8,7 @@ namespace facet {
 
 struct SceneNeeds {
     float min_roughness = 0.0f;  // over every material, texture texels included
-    bool diffuse = true;         // some surface is not a pure metal
+    bool diffuse = true;         // some surface is not a pure metal, or has a sheen (both read the irradiance)
 };
 
 SceneNeeds scene_needs(const Scene& scene);
