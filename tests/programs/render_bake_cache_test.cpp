@@ -40,7 +40,9 @@ fs::path only_entry(const fs::path& cache) {
     std::vector<fs::path> entries;
     for (const auto& e : fs::directory_iterator(cache)) {
         const std::string name = e.path().filename().string();
-        if (e.is_directory() && name[0] != '.' && name.rfind("prediction-", 0) != 0) entries.push_back(e.path());
+        if (e.is_directory() && name[0] != '.' && name.rfind("prediction-", 0) != 0 &&
+            name.rfind("brdf-lut-", 0) != 0)
+            entries.push_back(e.path());
     }
     return entries.size() == 1 ? entries[0] : fs::path();
 }
