@@ -124,14 +124,7 @@ std::optional<BakeOptions> parse_bake_options(int argc, char** argv) {
     o.validation = a.has("--validation");
     o.graph_dot = a.get("--graph-dot");
     o.shader_cache = shader_cache_dir(a);
-    if (a.has("--lut-cache") && a.has("--no-lut-cache"))
-        throw std::invalid_argument("--lut-cache and --no-lut-cache exclude each other");
-    if (a.has("--lut-cache")) {
-        if (a.get("--lut-cache").empty()) throw std::invalid_argument("--lut-cache needs a directory");
-        o.lut_cache = a.get("--lut-cache");
-    } else if (!a.has("--no-lut-cache")) {
-        o.lut_cache = user_cache_dir("bakes");
-    }
+    o.lut_cache = cache_dir_option(a, "--lut-cache", "--no-lut-cache", user_cache_dir("bakes"));
     return o;
 }
 

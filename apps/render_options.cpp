@@ -190,14 +190,7 @@ void parse_render_options(const cli::Parsed& a, RenderJob& j) {
                 throw std::invalid_argument(std::string(baking) + " and --ibl exclude each other: the environment is " +
                                             "the one baked in " + j.ibl_dir + " (its bake.json names it)");
     }
-    if (a.has("--no-bake-cache") && a.has("--bake-cache"))
-        throw std::invalid_argument("--bake-cache and --no-bake-cache exclude each other");
-    if (a.has("--bake-cache")) {
-        if (a.get("--bake-cache").empty()) throw std::invalid_argument("--bake-cache needs a directory");
-        j.bake_cache_dir = a.get("--bake-cache");
-    } else if (!a.has("--no-bake-cache")) {
-        j.bake_cache_dir = user_cache_dir("bakes");
-    }
+    j.bake_cache_dir = cache_dir_option(a, "--bake-cache", "--no-bake-cache", user_cache_dir("bakes"));
 }
 
 }  // namespace facet

@@ -13,15 +13,19 @@ void add_shader_cache_option(cli::Parser& parser) {
 }
 
 std::string shader_cache_dir(const cli::Parsed& parsed) {
-    if (parsed.has("--shader-cache") && parsed.has("--no-shader-cache"))
-        throw std::invalid_argument("--shader-cache and --no-shader-cache exclude each other");
-    if (parsed.has("--no-shader-cache")) return "";
-    if (parsed.has("--shader-cache")) {
-        if (parsed.get("--shader-cache").empty()) throw std::invalid_argument("--shader-cache needs a directory");
-        return parsed.get("--shader-cache");
-    }
-    if (const char* env = std::getenv("FACET_SHADER_CACHE"); env && *env) return env;
-    return user_cache_dir("shaders");
+    const char* env = std::getenv("FACET_SHADER_CACHE");
+    return cache_dir_option(parsed, "--shader-cache", "--no-shader-cache",
+                            env && *env ? std::string(env) : user_cache_dir("shaders"));
+}
+
+std::string cache_dir_option(const cli::Parsed& parsed, const std::string& option, const std::string& no_option,
+                             const std::string& fallback) {
+    if (parsed.has(option) && parsed.has(no_option))
+        throw std::invalid_argument(option + " and " + no_option + " exclude each other");
+    if (parsed.has(no_option)) return "";
+    if (!parsed.has(option)) return fallback;
+    if (parsed.get(option).empty()) throw std::invalid_argument(option + " needs a directory");
+    return parsed.get(option);
 }
 
 std::string user_cache_dir(const char* name) {

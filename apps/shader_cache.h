@@ -16,6 +16,10 @@ void add_shader_cache_option(cli::Parser& parser);
 // The cache directory chosen as above; empty: none (--no-shader-cache, or no HOME).
 // Throws std::invalid_argument for both flags or an empty DIR.
 std::string shader_cache_dir(const cli::Parsed& parsed);
+// The directory of a cache's pair of options: --OPTION DIR, none with --NO-OPTION,
+// `fallback` without either. Throws std::invalid_argument for both or an empty DIR.
+std::string cache_dir_option(const cli::Parsed& parsed, const std::string& option, const std::string& no_option,
+                             const std::string& fallback);
 // The user's cache directory NAME: $XDG_CACHE_HOME/facet/NAME, else ~/.cache/facet/NAME;
 // empty without either (nowhere to keep anything).
 std::string user_cache_dir(const char* name);

@@ -29,6 +29,9 @@ struct Pixel {
     float r, g, b, a;
 };
 
+// An 8-bit sRGB texel's value in linear light (the sRGB curve, IEC 61966-2-1).
+double srgb(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
 Pixel at(const std::vector<float>& rgba, uint32_t x, uint32_t y) {
     const float* p = &rgba[(size_t(y) * kSize + x) * 4];
     return {p[0], p[1], p[2], p[3]};
@@ -256,7 +259,6 @@ TEST_F(GltfFeaturesTest, SpecularTexturesReachTheDielectricLobe) {
     views.frame.views = {View::specular_f0};
     const RenderedImages images = render(b.write(dir, "specular_textures", members), views, false);
     ASSERT_EQ(images.views.size(), 1u);
-    auto srgb = [](double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); };
     const Pixel left = at(images.views[0].second, kSize / 2 - 8, kSize / 2);
     const Pixel right = at(images.views[0].second, kSize / 2 + 8, kSize / 2);
     // Left: A 128 from specularTexture, the colour texture's right (white) texel.
@@ -541,7 +543,6 @@ TEST_F(GltfFeaturesTest, SheenTexturesReachTheLayer) {
     views.frame.views = {View::sheen};
     const RenderedImages images = render(b.write(dir, "sheen_textured", members), views, false);
     ASSERT_EQ(images.views.size(), 1u);
-    auto srgb = [](double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); };
     const Pixel left = at(images.views[0].second, kSize / 2 - 8, kSize / 2);
     const Pixel right = at(images.views[0].second, kSize / 2 + 8, kSize / 2);
     EXPECT_NEAR(left.r, 1.0f, 2e-3f);
