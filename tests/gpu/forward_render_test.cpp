@@ -5,6 +5,8 @@
 // only what the frame needs. The fixture fails on any validation message.
 #include <gtest/gtest.h>
 
+#include <facet/ibl/bake_settings.h>
+
 #include <cmath>
 
 #include <facet/render/specular_lobes.h>
@@ -90,6 +92,27 @@ Material emitter(glm::vec3 emissive, float alpha, AlphaMode mode) {
     m.emissive = emissive;
     m.alpha_mode = mode;
     return m;
+}
+
+// A stop asked for while the session bakes (RenderSession::Callbacks::stop: the viewer's
+// newer choice) ends create at the next safe point after a pass, with an Error for which
+// is_cancelled() holds; nothing is left behind: the next session renders.
+TEST_F(ForwardRenderTest, CreateStoppedMidBakeIsCancelled) {
+    RenderJob job = small_job("builtin:sphere", "builtin:sky");
+    uint32_t passes = 0, total = 0;
+    RenderSession::Callbacks callbacks;
+    callbacks.bake_pass_done = [&](uint32_t done, uint32_t all, const std::string&) {
+        passes = done;
+        total = all;
+    };
+    callbacks.stop = [&](const char* point) { return std::string(point) == "pass" && passes >= 3; };
+    auto stopped = RenderSession::create(ctx(), job, callbacks);
+    ASSERT_FALSE(stopped);
+    EXPECT_TRUE(is_cancelled(stopped.error())) << stopped.error().message;
+    EXPECT_EQ(passes, 3u);
+    EXPECT_GT(total, 3u);
+    const RenderedImages images = render(job);
+    EXPECT_EQ(images.hdr.size(), 64u * 64u * 4u);
 }
 
 // The benchmark's floor (FrameSettings::flat_floor): every covered pixel is the material's
