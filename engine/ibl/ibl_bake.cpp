@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <span>
 
 #include <facet/gpu/context.h>
 #include <facet/gpu/device_limits.h>
@@ -116,6 +117,22 @@ struct Uploaded {
     ImageHandle equirect, cube;
 };
 
+// `texels` (RGBA32F, tightly packed) into `image` by the pass "upload NAME", through a new
+// host-visible buffer left in `staging` (which must outlive the graph's run).
+Result<ImageHandle> add_texel_upload(RenderGraph& graph, Context& context, std::span<const float> texels,
+                                     std::unique_ptr<Buffer>& staging, const std::string& name, ImageHandle image) {
+    auto made = Buffer::create(context, texels.size() * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                               MemoryUsage::upload, name + " upload");
+    if (!made) return made.error();
+    staging = std::make_unique<Buffer>(std::move(*made));
+    std::memcpy(staging->mapped(), texels.data(), texels.size() * sizeof(float));
+    if (Status flushed = staging->flush(); !flushed) return flushed.error();
+    auto staged = graph.import_buffer(
+        name + " texels",
+        {staging->handle(), staging->size(), {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_WRITE_BIT}, {}});
+    return add_upload_pass(graph, "upload " + name, staged, image);
+}
+
 Result<Uploaded> add_environment(RenderGraph& graph, Context& context, ProgramCache& programs,
                                  const Sampler& equirect_sampler, const EnvironmentSource& source, uint32_t cube_size,
                                  std::unique_ptr<Buffer>& staging, const std::string& prefix,
@@ -130,18 +147,9 @@ Result<Uploaded> add_environment(RenderGraph& graph, Context& context, ProgramCa
         if (!sky) return sky.error();
         out.equirect = *sky;
     } else {
-        const std::vector<float>& texels = source.image.rgba;
-        auto made = Buffer::create(context, texels.size() * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                   MemoryUsage::upload, prefix + "environment upload");
-        if (!made) return made.error();
-        staging = std::make_unique<Buffer>(std::move(*made));
-        std::memcpy(staging->mapped(), texels.data(), texels.size() * sizeof(float));
-        if (Status flushed = staging->flush(); !flushed) return flushed.error();
-        auto staged = graph.import_buffer(
-            prefix + "environment texels",
-            {staging->handle(), staging->size(),
-             {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_WRITE_BIT}, {}});
-        out.equirect = add_upload_pass(graph, "upload " + prefix + "environment", staged, out.equirect);
+        auto uploaded = add_texel_upload(graph, context, source.image.rgba, staging, prefix + "environment", out.equirect);
+        if (!uploaded) return uploaded.error();
+        out.equirect = *uploaded;
     }
     auto cube = add_environment_cube_passes(
         graph, programs, equirect_sampler, out.equirect,
@@ -227,16 +235,9 @@ Result<IblImages> IblBake::add_passes(RenderGraph& graph, const EnvironmentSourc
         auto target = target_or_new(graph, targets.lut, "brdf lut", lut_desc);
         if (!target) return target.error();
         if (cached_lut_.size() == size_t(s.lut.size) * s.lut.size * 4) {
-            auto made = Buffer::create(context_, cached_lut_.size() * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                       MemoryUsage::upload, "brdf lut upload");
-            if (!made) return made.error();
-            lut_staging_ = std::make_unique<Buffer>(std::move(*made));
-            std::memcpy(lut_staging_->mapped(), cached_lut_.data(), cached_lut_.size() * sizeof(float));
-            if (Status flushed = lut_staging_->flush(); !flushed) return flushed.error();
-            auto staged = graph.import_buffer(
-                "brdf lut texels", {lut_staging_->handle(), lut_staging_->size(),
-                                    {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_WRITE_BIT}, {}});
-            out.lut = add_upload_pass(graph, "upload brdf lut (cached)", staged, *target);
+            auto uploaded = add_texel_upload(graph, context_, cached_lut_, lut_staging_, "brdf lut (cached)", *target);
+            if (!uploaded) return uploaded.error();
+            out.lut = *uploaded;
         } else {
             auto lut = add_brdf_lut_passes(graph, programs_, s.lut, *target);
             if (!lut) return lut.error();
