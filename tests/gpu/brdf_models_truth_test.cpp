@@ -162,21 +162,44 @@ DirectionalCheck check_directional(const test::FinalImageViews& v, const glm::ve
     return out;
 }
 
+// builtin:spheres with `change` made to every material.
+Result<std::unique_ptr<RenderSession>> spheres_with(Context& context, const RenderJob& job,
+                                                    const std::function<void(Material&)>& change) {
+    auto scene = builtin_scene("builtin:spheres");
+    if (!scene) return scene.error();
+    for (Material& m : scene->materials) change(m);
+    return RenderSession::create(context, job, std::move(*scene));
+}
+
+// builtin:spheres (`change` made to every material) under one directional light and no
+// environment, each pixel checked against `model`'s truth (`layer`: the same change in the
+// truth's material at a pixel). A failure to render is a test failure and 0 pixels checked.
+DirectionalCheck spheres_under_a_light(Context& context, BrdfModel model, const std::function<void(Material&)>& change,
+                                       const std::function<void(test::TruthMaterial&, size_t)>& layer) {
+    RenderJob job = spheres_job(model, "none");
+    const Light light = directional_light();
+    job.extra_lights = {light};
+    auto session = spheres_with(context, job, change);
+    if (!session) {
+        ADD_FAILURE() << session.error().message;
+        return {};
+    }
+    auto frame = (*session)->render_frame();
+    if (!frame) {
+        ADD_FAILURE() << frame.error().message;
+        return {};
+    }
+    return check_directional(views_of(*frame, frame->hdr), (*session)->camera().position, light, model, layer);
+}
+
 // A directional light on every sphere of the grid, no environment: each pixel equals the
 // model's BRDF x cos x E (the thesis with its punctual k = (r+1)^2/8).
 TEST(BrdfModelsTruth, PunctualLightsAreEachModelsBrdf) {
     Context& context = test::gpu();
     const uint32_t messages = context.validation_message_count();
     for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis}) {
-        RenderJob job = spheres_job(model, "none");
-        const Light light = directional_light();
-        job.extra_lights = {light};
-        auto session = RenderSession::create(context, job);
-        ASSERT_TRUE(session) << session.error().message;
-        auto frame = (*session)->render_frame();
-        ASSERT_TRUE(frame) << frame.error().message;
-        const DirectionalCheck c = check_directional(views_of(*frame, frame->hdr), (*session)->camera().position, light,
-                                                     model, [](test::TruthMaterial&, size_t) {});
+        const DirectionalCheck c =
+            spheres_under_a_light(context, model, [](Material&) {}, [](test::TruthMaterial&, size_t) {});
         std::printf("%s model, one directional light: %d pixels, worst relative error %.2e\n", brdf_model_name(model),
                     c.checked, c.worst);
         EXPECT_GT(c.checked, 1000);
@@ -190,14 +213,6 @@ TEST(BrdfModelsTruth, PunctualLightsAreEachModelsBrdf) {
 // texels resolves it) on every sphere; the coat's views, a directional light pixel by pixel
 // and the sun sky per group, the forward pass (default shading) and the reference mode,
 // each against the truth with the layer (final_image_truth.h).
-// builtin:spheres with `change` made to every material.
-Result<std::unique_ptr<RenderSession>> spheres_with(Context& context, const RenderJob& job,
-                                                    const std::function<void(Material&)>& change) {
-    auto scene = builtin_scene("builtin:spheres");
-    if (!scene) return scene.error();
-    for (Material& m : scene->materials) change(m);
-    return RenderSession::create(context, job, std::move(*scene));
-}
 
 Result<std::unique_ptr<RenderSession>> coated_spheres(Context& context, const RenderJob& job) {
     return spheres_with(context, job, [](Material& m) {
@@ -540,26 +555,20 @@ TEST(BrdfModelsTruth, SheenUnderAClearcoatMatchesTheTruthUnderALight) {
     Context& context = test::gpu();
     const uint32_t messages = context.validation_message_count();
     for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis}) {
-        RenderJob job = spheres_job(model, "none");
-        const Light light = directional_light();
-        job.extra_lights = {light};
-        auto session = spheres_with(context, job, [](Material& m) {
-            m.clearcoat = 0.8f;
-            m.clearcoat_roughness = 0.3f;
-            m.sheen_color = glm::vec3(1.0f, 0.7f, 0.4f);
-            m.sheen_roughness = 0.6f;
-        });
-        ASSERT_TRUE(session) << session.error().message;
-        auto frame = (*session)->render_frame();
-        ASSERT_TRUE(frame) << frame.error().message;
-        const DirectionalCheck c =
-            check_directional(views_of(*frame, frame->hdr), (*session)->camera().position, light, model,
-                              [](test::TruthMaterial& m, size_t) {
-                                  m.clearcoat = 0.8;
-                                  m.clearcoat_roughness = 0.3;
-                                  m.sheen_color = {1.0, 0.7, 0.4};
-                                  m.sheen_roughness = 0.6;
-                              });
+        const DirectionalCheck c = spheres_under_a_light(
+            context, model,
+            [](Material& m) {
+                m.clearcoat = 0.8f;
+                m.clearcoat_roughness = 0.3f;
+                m.sheen_color = glm::vec3(1.0f, 0.7f, 0.4f);
+                m.sheen_roughness = 0.6f;
+            },
+            [](test::TruthMaterial& m, size_t) {
+                m.clearcoat = 0.8;
+                m.clearcoat_roughness = 0.3;
+                m.sheen_color = {1.0, 0.7, 0.4};
+                m.sheen_roughness = 0.6;
+            });
         std::printf("%s model, sheen under a clear coat, one directional light: %d pixels, worst relative error %.2e\n",
                     brdf_model_name(model), c.checked, c.worst);
         EXPECT_GT(c.checked, 1000);
