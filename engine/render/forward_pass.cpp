@@ -120,16 +120,18 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
                                 &m.occlusion_texture,           &m.emissive_texture,           &m.clearcoat_texture,
                                 &m.clearcoat_roughness_texture, &m.clearcoat_normal_texture,   &m.specular_texture,
                                 &m.specular_color_texture,      &m.iridescence_texture,        &m.iridescence_thickness_texture,
-                                &m.anisotropy_texture,          &m.sheen_color_texture,        &m.sheen_roughness_texture};
+                                &m.anisotropy_texture,          &m.sheen_color_texture,        &m.sheen_roughness_texture,
+                                &m.transmission_texture,        &m.thickness_texture};
     const char* maps[] = {"HAS_BASE_COLOR_MAP",     "HAS_METALLIC_ROUGHNESS_MAP", "HAS_NORMAL_MAP",
                           "HAS_OCCLUSION_MAP",      "HAS_EMISSIVE_MAP",           "HAS_CLEARCOAT_MAP",
                           "HAS_CLEARCOAT_ROUGHNESS_MAP", "HAS_CLEARCOAT_NORMAL_MAP", "HAS_SPECULAR_MAP",
                           "HAS_SPECULAR_COLOR_MAP", "HAS_IRIDESCENCE_MAP", "HAS_IRIDESCENCE_THICKNESS_MAP",
-                          "HAS_ANISOTROPY_MAP",     "HAS_SHEEN_COLOR_MAP",        "HAS_SHEEN_ROUGHNESS_MAP"};
+                          "HAS_ANISOTROPY_MAP",     "HAS_SHEEN_COLOR_MAP",        "HAS_SHEEN_ROUGHNESS_MAP",
+                          "HAS_TRANSMISSION_MAP",   "HAS_THICKNESS_MAP"};
     const char* uvs[] = {"BASE_COLOR_UV", "METALLIC_ROUGHNESS_UV", "NORMAL_UV",           "OCCLUSION_UV",
                          "EMISSIVE_UV",   "CLEARCOAT_UV",          "CLEARCOAT_ROUGHNESS_UV", "CLEARCOAT_NORMAL_UV",
                          "SPECULAR_UV",   "SPECULAR_COLOR_UV", "IRIDESCENCE_UV", "IRIDESCENCE_THICKNESS_UV",
-                         "ANISOTROPY_UV", "SHEEN_COLOR_UV", "SHEEN_ROUGHNESS_UV"};
+                         "ANISOTROPY_UV", "SHEEN_COLOR_UV", "SHEEN_ROUGHNESS_UV", "TRANSMISSION_UV", "THICKNESS_UV"};
     static_assert(std::size(refs) == size_t(TextureSlot::count) && std::size(maps) == std::size(refs) &&
                   std::size(uvs) == std::size(refs));
     const bool coated = m.clearcoat > 0.0f, film = m.iridescence > 0.0f, stretched = m.anisotropy > 0.0f,
@@ -376,7 +378,9 @@ ForwardOutputs ForwardRenderer::add_draw_pass(RenderGraph& graph, const std::str
                 tex(TextureSlot::iridescence_thickness),
                 tex(TextureSlot::anisotropy),
                 tex(TextureSlot::sheen_color),
-                tex(TextureSlot::sheen_roughness)};
+                tex(TextureSlot::sheen_roughness),
+                tex(TextureSlot::transmission),
+                tex(TextureSlot::thickness)};
             pipeline->push_descriptors(cmd, writes);
             pipeline->push_constants(cmd, DrawConstants{i, p.material});
             vkCmdDrawIndexed(cmd, p.index_count, 1, p.first_index, int32_t(p.vertex_offset), 0);

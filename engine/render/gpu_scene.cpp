@@ -1,6 +1,7 @@
 #include <facet/render/gpu_scene.h>
 
 #include <algorithm>
+#include <cmath>
 #include <bit>
 #include <cstring>
 #include <span>
@@ -121,7 +122,11 @@ std::vector<GpuMaterial> gpu_materials(const std::vector<Material>& materials) {
                        glm::vec4(m.iridescence, m.iridescence_ior, m.iridescence_thickness_minimum,
                                  m.iridescence_thickness_maximum),
                        glm::vec4(m.anisotropy, m.anisotropy_rotation, 0.0f, 0.0f),
-                       glm::vec4(m.sheen_color, m.sheen_roughness)});
+                       glm::vec4(m.sheen_color, m.sheen_roughness),
+                       // An infinite attenuation distance (none) as 0: the shader tests for it.
+                       glm::vec4(m.transmission, m.thickness,
+                                 std::isfinite(m.attenuation_distance) ? m.attenuation_distance : 0.0f, 0.0f),
+                       glm::vec4(m.attenuation_color, 0.0f)});
     return out;
 }
 
@@ -167,7 +172,8 @@ GpuScene::GpuScene(Context& context, const Scene& scene)
                                    m.occlusion_texture,           m.emissive_texture,           m.clearcoat_texture,
                                    m.clearcoat_roughness_texture, m.clearcoat_normal_texture,   m.specular_texture,
                                    m.specular_color_texture,      m.iridescence_texture,        m.iridescence_thickness_texture,
-                                   m.anisotropy_texture,          m.sheen_color_texture,        m.sheen_roughness_texture};
+                                   m.anisotropy_texture,          m.sheen_color_texture,        m.sheen_roughness_texture,
+                                   m.transmission_texture,        m.thickness_texture};
         static_assert(std::size(refs) == size_t(TextureSlot::count));
         std::array<GpuTexture, size_t(TextureSlot::count)> slots{};
         std::array<bool, size_t(TextureSlot::count)> has{};

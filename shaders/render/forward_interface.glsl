@@ -33,6 +33,8 @@ struct MaterialData {
     vec4 iridescence;     // KHR_materials_iridescence: factor, film ior, thickness minimum, maximum (nm)
     vec4 anisotropy;      // KHR_materials_anisotropy: strength, rotation (radians)
     vec4 sheen;           // KHR_materials_sheen: colour (rgb, linear), roughness (a)
+    vec4 transmission;    // KHR_materials_transmission: factor; KHR_materials_volume: thickness, attenuation distance (0: none)
+    vec4 attenuation;     // KHR_materials_volume: attenuation colour (rgb)
 };
 layout(binding = 3, std430) readonly buffer Materials { MaterialData materials[]; };
 
@@ -55,6 +57,8 @@ layout(binding = 19) uniform sampler2D iridescence_thickness_map;  // G: minimum
 layout(binding = 20) uniform sampler2D anisotropy_map;           // KHR_materials_anisotropy: RG direction, B strength
 layout(binding = 21) uniform sampler2D sheen_color_map;          // KHR_materials_sheen: RGB (sRGB) x sheenColorFactor
 layout(binding = 22) uniform sampler2D sheen_roughness_map;      // A x sheenRoughnessFactor
+layout(binding = 23) uniform sampler2D transmission_map;         // KHR_materials_transmission: R x transmissionFactor
+layout(binding = 24) uniform sampler2D thickness_map;            // KHR_materials_volume: G x thicknessFactor
 
 layout(push_constant) uniform Draw {
     uint instance;

@@ -27,12 +27,13 @@ namespace {
 // the C++ layout is the GLSL one with no padding.
 static_assert(sizeof(GpuInstance) == 128);
 static_assert(offsetof(GpuInstance, world) == 0 && offsetof(GpuInstance, normal_matrix) == 64);
-static_assert(sizeof(GpuMaterial) == 144);
+static_assert(sizeof(GpuMaterial) == 176);
 static_assert(offsetof(GpuMaterial, base_color) == 0 && offsetof(GpuMaterial, emissive_f0) == 16 &&
               offsetof(GpuMaterial, factors) == 32 && offsetof(GpuMaterial, extra) == 48 &&
               offsetof(GpuMaterial, clearcoat) == 64 && offsetof(GpuMaterial, specular_color) == 80 &&
               offsetof(GpuMaterial, iridescence) == 96 && offsetof(GpuMaterial, anisotropy) == 112 &&
-              offsetof(GpuMaterial, sheen) == 128);
+              offsetof(GpuMaterial, sheen) == 128 &&
+              offsetof(GpuMaterial, transmission) == 144 && offsetof(GpuMaterial, attenuation) == 160);
 
 std::vector<uint32_t> compile(ShaderStage stage, const char* name, std::vector<ShaderDefine> defines = {}) {
     ShaderCompiler compiler;
@@ -87,7 +88,9 @@ TEST(GpuLayout, MaterialDataMatchesGpuMaterial) {
                    {"specular_color", offsetof(GpuMaterial, specular_color)},
                    {"iridescence", offsetof(GpuMaterial, iridescence)},
                    {"anisotropy", offsetof(GpuMaterial, anisotropy)},
-                   {"sheen", offsetof(GpuMaterial, sheen)}});
+                   {"sheen", offsetof(GpuMaterial, sheen)},
+                   {"transmission", offsetof(GpuMaterial, transmission)},
+                   {"attenuation", offsetof(GpuMaterial, attenuation)}});
 }
 
 // The forward pass, the reference pass and the skybox read one packed light

@@ -35,6 +35,8 @@ enum class TextureSlot {
     anisotropy,             // KHR_materials_anisotropy: RG direction, B strength
     sheen_color,            // KHR_materials_sheen: RGB, sRGB
     sheen_roughness,        // A
+    transmission,           // KHR_materials_transmission: R
+    thickness,              // KHR_materials_volume: G
     count
 };
 
@@ -53,6 +55,8 @@ struct GpuMaterial {
     glm::vec4 iridescence;     // KHR_materials_iridescence: factor, film ior, thickness minimum, maximum (nm)
     glm::vec4 anisotropy;      // KHR_materials_anisotropy: strength, rotation (radians)
     glm::vec4 sheen;           // KHR_materials_sheen: colour (rgb, linear), roughness (a)
+    glm::vec4 transmission;    // KHR_materials_transmission: factor; KHR_materials_volume: thickness, attenuation distance (0: none)
+    glm::vec4 attenuation;     // KHR_materials_volume: attenuation colour (rgb)
 };
 
 struct GpuTexture {

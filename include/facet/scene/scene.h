@@ -4,6 +4,7 @@
 // node's world matrix). Loaders (glTF, built-ins) fill it; nothing here touches Vulkan.
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -124,6 +125,22 @@ struct Material {
     TextureRef sheen_color_texture;      // sRGB: RGB
     TextureRef sheen_roughness_texture;  // linear: A
     bool has_sheen() const { return sheen_color.r > 0.0f || sheen_color.g > 0.0f || sheen_color.b > 0.0f; }
+    // KHR_materials_transmission: the share of the light entering the dielectric part that is
+    // transmitted through the surface (a microfacet BTDF tinted by the base colour) instead of
+    // re-emitted diffusely; 0 (none) .. 1, times the texture's R. Its lobe is the specular
+    // lobe mirrored through the surface, its alpha (roughness x clamp(2 ior - 2, 0, 1))^2, ior
+    // the dielectric's ((1 + sqrt F0) / (1 - sqrt F0): 1.5 for F0 0.04).
+    float transmission = 0.0f;
+    TextureRef transmission_texture;  // linear: R
+    // KHR_materials_volume: the thickness of the volume behind the surface in the mesh's own
+    // units (0: thin-walled, no refraction), times the texture's G; light crossing it is
+    // attenuated to attenuation_color^(distance / attenuation_distance) (Beer-Lambert; the
+    // distance infinite by default: no attenuation). Read with transmission only.
+    float thickness = 0.0f;
+    TextureRef thickness_texture;  // linear: G
+    float attenuation_distance = std::numeric_limits<float>::infinity();
+    glm::vec3 attenuation_color{1.0f};
+    bool has_transmission() const { return transmission > 0.0f; }
 
     // The vertex tangents serve the normal maps: the surface's, else the clear coat's.
     bool has_normal_map() const { return normal_texture.valid() || clearcoat_normal_texture.valid(); }
