@@ -120,7 +120,9 @@ TEST(ShaderReflection, ForwardVertexAndFragmentMergeIntoOneLayout) {
                      {19, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                      {20, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},    // KHR_materials_anisotropy's
                      {21, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},    // KHR_materials_sheen's two
-                     {22, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
+                     {22, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                     {23, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},    // KHR_materials_transmission's
+                     {24, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},   // KHR_materials_volume's
                     "forward");
     EXPECT_EQ(merged->push_constant_bytes, 8u);  // uint instance, uint material
 }
