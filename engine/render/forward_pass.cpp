@@ -33,6 +33,14 @@ VkSamplerCreateInfo clamped_linear() {
     return info;
 }
 
+// The transmission background's: every mip level, linearly blended.
+VkSamplerCreateInfo mipmapped_clamped_linear() {
+    VkSamplerCreateInfo info = clamped_linear();
+    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+    info.maxLod = VK_LOD_CLAMP_NONE;
+    return info;
+}
+
 // KHR_texture_transform's matrix as a GLSL mat3x2 constructor (column-major, as stored).
 std::string uv_transform_literal(const std::array<float, 6>& m) {
     std::string s = "mat3x2(";
@@ -70,7 +78,16 @@ ForwardRenderer::ForwardRenderer(Context& context, ProgramCache& programs, uint3
     : context_(context),
       programs_(programs),
       nearest_(or_throw(Sampler::create(context, VK_FILTER_NEAREST, false, false, "nearest sampler"))),
-      lut_sampler_(or_throw(Sampler::create(context, clamped_linear(), "brdf lut sampler"))) {
+      lut_sampler_(or_throw(Sampler::create(context, clamped_linear(), "brdf lut sampler"))),
+      background_sampler_(or_throw(Sampler::create(context, mipmapped_clamped_linear(), "transmission background sampler"))) {
+    ImageDesc clear;
+    clear.format = VK_FORMAT_R8G8B8A8_UNORM;
+    no_background_ = or_throw(Image::create(context, clear, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                            "no transmission background"));
+    const uint8_t transparent[4] = {0, 0, 0, 0};
+    or_throw(upload_image(context, no_background_, 0, 0, std::as_bytes(std::span<const uint8_t>(transparent)),
+                          VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
+    no_background_view_ = or_throw(no_background_.view());
     if (frames_in_flight == 0) throw UsageError("ForwardRenderer: frames_in_flight must be at least 1");
     ImageDesc table;
     table.width = kSpecularLobeTableWidth;
@@ -135,7 +152,7 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     static_assert(std::size(refs) == size_t(TextureSlot::count) && std::size(maps) == std::size(refs) &&
                   std::size(uvs) == std::size(refs));
     const bool coated = m.clearcoat > 0.0f, film = m.iridescence > 0.0f, stretched = m.anisotropy > 0.0f,
-               sheen = m.has_sheen();
+               sheen = m.has_sheen(), through = m.has_transmission();
     for (size_t t = 0; t < std::size(refs); ++t) {
         const TextureSlot slot = TextureSlot(t);
         if (!scene.has_texture(material, slot)) continue;
@@ -146,6 +163,7 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
         if (film_slot && !film) continue;
         if (slot == TextureSlot::anisotropy && !stretched) continue;
         if ((slot == TextureSlot::sheen_color || slot == TextureSlot::sheen_roughness) && !sheen) continue;
+        if ((slot == TextureSlot::transmission || slot == TextureSlot::thickness) && !through) continue;
         define_if(true, maps[t]);
         // The texture's coordinates where they are not TEXCOORD_0 as is: the uv set, then
         // KHR_texture_transform as a constant of the material's pipeline (no buffer read).
@@ -178,6 +196,7 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     define_if(film, "FACET_IRIDESCENCE");
     define_if(stretched, "FACET_ANISOTROPY");
     define_if(sheen, "FACET_SHEEN");
+    define_if(through, "FACET_TRANSMISSION");
     define_if(ibl, "USE_IBL");
     define_if(settings.brdf == BrdfModel::thesis, "BRDF_THESIS");
     define_if(ibl && settings.multiscatter, "MULTISCATTER");
@@ -216,8 +235,17 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     return pipeline;
 }
 
+namespace {
+// What the transmission background draws: opaque (or masked) instances without a transmission.
+bool in_transmission_background(const Scene& scene, uint32_t instance) {
+    const Material& m = scene.materials.at(scene.primitives.at(scene.instances.at(instance).primitive).material);
+    return m.alpha_mode != AlphaMode::blend && !m.has_transmission();
+}
+}  // namespace
+
 Result<std::vector<const Pipeline*>> ForwardRenderer::pipelines(const GpuScene& gpu, View view, const Target& target,
-                                                                bool ibl, const FrameSettings& s) {
+                                                                bool ibl, const FrameSettings& s,
+                                                                bool opaque_background) {
     const Scene& scene = gpu.scene();
     // The disks as constants of every material's pipeline, written once for the pass.
     std::vector<ShaderDefine> disk_defines;
@@ -230,8 +258,9 @@ Result<std::vector<const Pipeline*>> ForwardRenderer::pipelines(const GpuScene& 
         for (size_t i = 0; i < s.environment_lights.size(); ++i)
             disk_defines.push_back({"FACET_DISK_LIGHT_" + std::to_string(i), packed_light_literal(disk_data(s.environment_lights[i]))});
     }
-    std::vector<const Pipeline*> out(scene.instances.size());
+    std::vector<const Pipeline*> out(scene.instances.size(), nullptr);
     for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+        if (opaque_background && !in_transmission_background(scene, i)) continue;
         auto p = material_pipeline(gpu, i, view, target, ibl, s, disk_defines);
         if (!p) return p.error();
         out[i] = *p;
@@ -262,7 +291,8 @@ ForwardRenderer::DrawList ForwardRenderer::draw_list(const GpuScene& gpu, glm::v
 ForwardOutputs ForwardRenderer::add_draw_pass(RenderGraph& graph, const std::string& name, const GpuScene& gpu,
                                               const FrameSettings& s, const CameraMatrices& camera,
                                               const ForwardTargets& targets, const std::optional<IblInputs>& ibl,
-                                              std::vector<const Pipeline*> pipelines, uint32_t frame) {
+                                              std::vector<const Pipeline*> pipelines, uint32_t frame,
+                                              bool opaque_background, ImageHandle background) {
     // What the slot's buffers will hold, computed now and written when the pass is recorded.
     FrameData data{};
     data.view_projection = camera.projection * camera.view;
@@ -276,8 +306,10 @@ ForwardOutputs ForwardRenderer::add_draw_pass(RenderGraph& graph, const std::str
     for (const Light& l : s.lights) lights.push_back(light_data(l));
 
     const DrawList list = draw_list(gpu, camera.position());
-    std::vector<uint32_t> order = list.opaque;
-    order.insert(order.end(), list.blend.begin(), list.blend.end());
+    std::vector<uint32_t> order;
+    for (uint32_t i : list.opaque)
+        if (!opaque_background || in_transmission_background(gpu.scene(), i)) order.push_back(i);
+    if (!opaque_background) order.insert(order.end(), list.blend.begin(), list.blend.end());
 
     // The execute step is built before the setup step runs: it names the resources by
     // the handles passed in (a view does not depend on the version).
@@ -289,11 +321,12 @@ ForwardOutputs ForwardRenderer::add_draw_pass(RenderGraph& graph, const std::str
             b.sample(ibl->specular);
             b.sample(ibl->lut);
         }
+        if (background.valid()) b.sample(background);
         out.color = b.color_attachment(targets.color);
         out.depth = b.depth_attachment(targets.depth);
         if (resolve) out.resolve = b.color_attachment(targets.resolve);
     }, [this, &gpu, frame, data, lights = std::move(lights), order = std::move(order), pipelines = std::move(pipelines),
-        ibl, color = targets.color, depth = targets.depth, resolve_target = targets.resolve, clear_color = targets.clear_color,
+        ibl, background, color = targets.color, depth = targets.depth, resolve_target = targets.resolve, clear_color = targets.clear_color,
         clear_depth = targets.clear_depth, store_depth = targets.store_depth](PassContext& pc) {
         Slot& slot = slots_[frame];
         std::memcpy(slot.frame.mapped(), &data, sizeof data);
@@ -346,6 +379,9 @@ ForwardOutputs ForwardRenderer::add_draw_pass(RenderGraph& graph, const std::str
             lut = pc.view(ibl->lut);
             cube_sampler = ibl->cube_sampler;
         }
+        const DescriptorWrite behind =
+            background.valid() ? DescriptorWrite::sampled_image(pc.view(background), background_sampler_.handle())
+                               : DescriptorWrite::sampled_image(no_background_view_, lut_sampler_.handle());
         for (uint32_t i : order) {
             const Primitive& p = scene.primitives[scene.instances[i].primitive];
             const Pipeline* pipeline = pipelines[i];
@@ -380,7 +416,8 @@ ForwardOutputs ForwardRenderer::add_draw_pass(RenderGraph& graph, const std::str
                 tex(TextureSlot::sheen_color),
                 tex(TextureSlot::sheen_roughness),
                 tex(TextureSlot::transmission),
-                tex(TextureSlot::thickness)};
+                tex(TextureSlot::thickness),
+                behind};
             pipeline->push_descriptors(cmd, writes);
             pipeline->push_constants(cmd, DrawConstants{i, p.material});
             vkCmdDrawIndexed(cmd, p.index_count, 1, p.first_index, int32_t(p.vertex_offset), 0);
@@ -419,7 +456,55 @@ Result<ForwardOutputs> ForwardRenderer::add_forward_pass(RenderGraph& graph, con
     const Target target{color.format, depth.format, color.samples};
     auto final_pipelines = pipelines(gpu, View::final_color, target, ibl.has_value(), s);
     if (!final_pipelines) return final_pipelines.error();
-    return add_draw_pass(graph, "forward", gpu, s, camera, targets, ibl, std::move(*final_pipelines), frame);
+    auto background = add_transmission_background(graph, gpu, s, camera, color.width, color.height, ibl, frame);
+    if (!background) return background.error();
+    return add_draw_pass(graph, "forward", gpu, s, camera, targets, ibl, std::move(*final_pipelines), frame, false,
+                         *background);
+}
+
+Result<ImageHandle> ForwardRenderer::add_transmission_background(RenderGraph& graph, const GpuScene& gpu,
+                                                                 const FrameSettings& s, const CameraMatrices& camera,
+                                                                 uint32_t width, uint32_t height,
+                                                                 const std::optional<IblInputs>& ibl, uint32_t frame) {
+    const Scene& scene = gpu.scene();
+    const bool any = std::any_of(scene.instances.begin(), scene.instances.end(), [&](const Instance& in) {
+        return scene.materials.at(scene.primitives.at(in.primitive).material).has_transmission();
+    });
+    if (!any) return ImageHandle{};
+    ImageDesc desc;
+    desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    desc.width = width;
+    desc.height = height;
+    desc.mip_levels = uint32_t(std::floor(std::log2(double(std::max(width, height))))) + 1;
+    ImageDesc depth_desc;
+    depth_desc.format = VK_FORMAT_D32_SFLOAT;
+    depth_desc.width = width;
+    depth_desc.height = height;
+    const Target target{desc.format, depth_desc.format, VK_SAMPLE_COUNT_1_BIT};
+    auto opaque = pipelines(gpu, View::final_color, target, ibl.has_value(), s, true);
+    if (!opaque) return opaque.error();
+    auto downsample = programs_.compute("render/transmission_mips.comp");
+    if (!downsample) return downsample.error();
+    ForwardTargets targets;
+    targets.color = graph.create_image("transmission background", desc);
+    targets.depth = graph.create_image("transmission background depth", depth_desc);
+    targets.store_depth = false;
+    ImageHandle current = add_draw_pass(graph, "transmission background", gpu, s, camera, targets, ibl,
+                                        std::move(*opaque), frame, true).color;
+    const ImageHandle image = targets.color;
+    for (uint32_t m = 1; m < desc.mip_levels; ++m) {
+        graph.add_compute_pass("transmission background mip " + std::to_string(m), [&](PassBuilder& b) {
+            b.read_storage(current, ImageRange::mip(m - 1));
+            current = b.write_storage(current, ImageRange::mip(m));
+        }, [p = *downsample, image, m, w = desc.mip_width(m), h = desc.mip_height(m)](PassContext& pc) {
+            p->bind(pc.cmd());
+            const DescriptorWrite writes[] = {DescriptorWrite::storage_image(pc.view(image, ImageRange::mip(m - 1))),
+                                              DescriptorWrite::storage_image(pc.view(image, ImageRange::mip(m)))};
+            p->push_descriptors(pc.cmd(), writes);
+            vkCmdDispatch(pc.cmd(), (w + 7) / 8, (h + 7) / 8, 1);
+        });
+    }
+    return current;
 }
 
 Result<ImageHandle> ForwardRenderer::add_view_pass(RenderGraph& graph, const GpuScene& gpu, View view,

@@ -57,6 +57,11 @@ struct FacetSurface {
     // KHR_materials_sheen (facet/sheen.glsl): its colour (black: none) and roughness.
     vec3 sheen_color;
     float sheen_roughness;
+    // KHR_materials_transmission (facet/transmission.glsl): the share of the dielectric
+    // base's light transmitted (0: none) and the transmitted lobe's perceptual roughness.
+    // Shaded only where FACET_TRANSMISSION is defined before this file is included.
+    float transmission;
+    float transmission_roughness;
 };
 
 // glTF's metallic-roughness material under the model `brdf`.
@@ -83,6 +88,8 @@ FacetSurface facet_surface(uint brdf, vec3 n, vec3 albedo, float metallic, float
     s.anisotropy_t = vec3(1.0, 0.0, 0.0);
     s.sheen_color = vec3(0.0);
     s.sheen_roughness = 0.0;
+    s.transmission = 0.0;
+    s.transmission_roughness = 0.0;
     return s;
 }
 
@@ -290,6 +297,8 @@ float facet_geometry(FacetSurface s, float NdotV, float NdotL, bool punctual) {
     return G_Smith(NdotV, NdotL, punctual ? k_direct(s.roughness) : k_ibl(s.roughness));
 }
 
+#include "transmission.glsl"
+
 // Radiance `incident` arriving along l (unit, towards the light) reflected towards v:
 // diffuse = kd albedo / pi * incident * n.l and specular = F D G / (4 n.l n.v) * incident
 // * n.l. Zero when l is below the surface. NdotV = clamp(n.v, 0, 1). `punctual` selects
@@ -297,19 +306,36 @@ float facet_geometry(FacetSurface s, float NdotV, float NdotL, bool punctual) {
 // A sheen (FACET_SHEEN, facet/sheen.glsl) scales both and adds its lobe to the specular.
 // A clear coat (facet_surface_clearcoat) dims both by 1 - weight Fc(v.h) and adds its own
 // lobe to the specular, with its normal's n.l.
+// A transmission (FACET_TRANSMISSION, facet/transmission.glsl) scales the diffuse lobe by
+// 1 - transmission and, for l below the surface, returns the light it transmits as `diffuse`
+// (the base layer's light; its h, for the clear coat, that of l mirrored above the surface).
 void facet_reflect_light(FacetSurface s, vec3 v, float NdotV, vec3 l, vec3 incident, bool punctual,
                          out vec3 diffuse, out vec3 specular) {
     diffuse = vec3(0.0);
     specular = vec3(0.0);
     float NdotL = dot(s.n, l);
     float coat_NdotL = s.clearcoat > 0.0 ? dot(s.clearcoat_n, l) : 0.0;
-    if (NdotL <= 0.0 && coat_NdotL <= 0.0) return;
+#ifdef FACET_TRANSMISSION
+    bool through = NdotL < 0.0 && s.transmission > 0.0;
+#else
+    const bool through = false;
+#endif
+    if (NdotL <= 0.0 && coat_NdotL <= 0.0 && !through) return;
     vec3 h = normalize(v + l);
+#ifdef FACET_TRANSMISSION
+    if (through) {
+        diffuse = facet_transmit_light(s, v, NdotV, l, incident, punctual);
+        h = normalize(v + facet_mirrored(s.n, l));
+    }
+#endif
     float VdotH = clamp(dot(h, v), 0.0, 1.0);
     if (NdotL > 0.0) {
         vec3 F, kd;
         facet_fresnel(s, VdotH, F, kd);
         diffuse = kd * s.albedo / PI * incident * NdotL;
+#ifdef FACET_TRANSMISSION
+        diffuse *= 1.0 - s.transmission;
+#endif
         float dg = facet_specular_dg(s, NdotV, NdotL, clamp(dot(s.n, h), 0.0, 1.0), punctual);
 #ifdef FACET_ANISOTROPY
         if (s.anisotropy > 0.0) dg = facet_anisotropic_dg(s, v, l, h, NdotV, NdotL, punctual);
@@ -514,9 +540,11 @@ float facet_segment_share(float x) {
 // 0.2-0.8, a random half of them near R), the integral's mean error is 0.1-2% where R is
 // near the cap and 0.2-9% (mostly under 4%) in the tails; the final image under the shared
 // environments is as close to the truth as with the sums (docs/accuracy.md).
-// Occlusion not applied.
-void facet_disk_light(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, out vec3 diffuse, out vec3 specular) {
-    vec3 c = disk.direction;
+// Occlusion not applied. facet_disk_lobe gives the parts: the cap's irradiance, and the
+// specular integral without F (returned), with the cap's centre c and its half vector h.
+float facet_disk_lobe(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, out float irradiance, out vec3 c,
+                      out vec3 h) {
+    c = disk.direction;
     float sin_theta = disk.sin_radius, omega = disk.solid_angle;
     float NdotC = dot(s.n, c);
     // The cap's irradiance: pi sin^2(theta) (n.c) above the horizon (exact); where the
@@ -532,7 +560,7 @@ void facet_disk_light(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, 
     float cut = clamp(NdotC + sin_theta, 0.0, 2.0 * sin_theta);
     float segment = facet_segment_share(cut * disk.inv_diameter);
     float chord = max(sin_theta * sin_theta - NdotC * NdotC, 0.0);
-    float irradiance = NdotC >= sin_theta || !wide
+    irradiance = NdotC >= sin_theta || !wide
                            ? PI * sin_theta * sin_theta * max(NdotC, 0.0)
                            : max(NdotC * PI * sin_theta * sin_theta * segment + 2.0 / 3.0 * chord * sqrt(chord), 0.0);
     // A cap the horizon cuts: its visible part stands in as the cap between the horizon and
@@ -548,7 +576,7 @@ void facet_disk_light(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, 
         omega = PI * chord2;
     }
     // The centre's half vector: the slope of the cap's image, F and the diffuse weight.
-    vec3 h = v + c;
+    h = v + c;
     h *= inversesqrt(max(dot(h, h), 1e-12));
     float VdotH = clamp(dot(v, h), 1e-4, 1.0), NdotH = clamp(dot(s.n, h), 1e-4, 1.0);
     float alpha = max(s.roughness * s.roughness, MIN_ALPHA), a2 = alpha * alpha, inv_a2 = 1.0 / a2;
@@ -569,24 +597,53 @@ void facet_disk_light(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, 
         visibility = V_SmithGGXCorrelated(NdotV, NdotL, alpha);
     else
         visibility = G_Smith(NdotV, NdotL, k_ibl(s.roughness)) / max(4.0 * NdotV * NdotL, 1e-8);
+    // 4 (v.h) / (n.h) = 4 (v.h)^2 (n.h)^2 q.
+    return visibility * NdotL * 4.0 * VdotH * VdotH * NdotH * NdotH * q * share * scale;
+}
+
+void facet_disk_light(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, out vec3 diffuse, out vec3 specular) {
+    float irradiance;
+    vec3 c, h;
+    float lobe = facet_disk_lobe(s, v, NdotV, disk, irradiance, c, h);
+    float VdotH = clamp(dot(v, h), 1e-4, 1.0);
     vec3 F, kd;
     facet_fresnel(s, VdotH, F, kd);
     diffuse = kd * s.albedo * (irradiance / PI) * disk.radiance;
-    // 4 (v.h) / (n.h) = 4 (v.h)^2 (n.h)^2 q.
-    specular = F * (visibility * NdotL * 4.0 * VdotH * VdotH * NdotH * NdotH * q * share * scale) * disk.radiance;
+#ifdef FACET_TRANSMISSION
+    diffuse *= 1.0 - s.transmission;
+#endif
+    specular = F * lobe * disk.radiance;
 #ifdef FACET_ANISOTROPY
     // KHR_materials_anisotropy: the closed form above (isotropic) times the ratio of the
     // stretched lobe to the round one at the cap's centre, both widened by the cap's radius
     // (its slope variance added to each width's square): the point ratio for small caps,
     // 1 where the cap is wider than either lobe.
     if (s.anisotropy > 0.0) {
-        float r2 = sin_theta * sin_theta;
+        float alpha = max(s.roughness * s.roughness, MIN_ALPHA), a2 = alpha * alpha;
+        float NdotL = max(dot(s.n, c), 1e-4), r2 = disk.sin_radius * disk.sin_radius;
         float at = mix(alpha, 1.0, s.anisotropy * s.anisotropy);
         float stretched = facet_anisotropic_dg(s, v, c, h, NdotV, NdotL, false, sqrt(at * at + r2), sqrt(a2 + r2));
         float round = facet_anisotropic_dg(s, v, c, h, NdotV, NdotL, false, sqrt(a2 + r2), sqrt(a2 + r2));
         specular *= stretched / max(round, 1e-30);
     }
 #endif
+}
+
+// The light a disk below the surface transmits (FACET_TRANSMISSION, facet/transmission.glsl):
+// the closed form of the disk mirrored above the surface with the transmitted lobe, kd(v.h)
+// in place of F, times transmission x albedo (the base layer's light, like the diffuse).
+// Zero for caps above the surface. Occlusion not applied.
+vec3 facet_disk_transmission(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk) {
+    FacetDiskLight m = disk;
+    m.direction = facet_mirrored(s.n, disk.direction);
+    FacetSurface t = s;
+    t.roughness = s.transmission_roughness;
+    float irradiance;
+    vec3 c, h;
+    float lobe = facet_disk_lobe(t, v, NdotV, m, irradiance, c, h);
+    vec3 F, kd;
+    facet_fresnel(s, clamp(dot(v, h), 1e-4, 1.0), F, kd);
+    return s.transmission * s.albedo * kd * lobe * disk.radiance;
 }
 
 // KHR_materials_clearcoat's layer under a disk: `below`, the factor that dims the surface's

@@ -111,7 +111,9 @@ float facet_sheen_scaling(FacetSurface s, float NdotX) {
 vec3 facet_sheen_light(FacetSurface s, vec3 v, float NdotV, vec3 l, vec3 incident, inout vec3 diffuse,
                        inout vec3 specular) {
     float NdotL = dot(s.n, l);
-    float scaling = min(facet_sheen_scaling(s, NdotV), facet_sheen_scaling(s, max(NdotL, 0.0)));
+    // (Light from below the surface, which only a transmission lets through: the view's side.)
+    float scaling = NdotL > 0.0 ? min(facet_sheen_scaling(s, NdotV), facet_sheen_scaling(s, NdotL))
+                                : facet_sheen_scaling(s, NdotV);
     diffuse *= scaling;
     specular *= scaling;
     if (NdotL <= 0.0) return vec3(0.0);

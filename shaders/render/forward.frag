@@ -12,7 +12,8 @@
 // (KHR_materials_specular's textures), FACET_IRIDESCENCE (KHR_materials_iridescence's film) and
 // its HAS_IRIDESCENCE_MAP, HAS_IRIDESCENCE_THICKNESS_MAP, FACET_ANISOTROPY (KHR_materials_anisotropy)
 // and its HAS_ANISOTROPY_MAP, FACET_SHEEN (KHR_materials_sheen) and its HAS_SHEEN_COLOR_MAP,
-// HAS_SHEEN_ROUGHNESS_MAP, <SLOT>_UV (a texture's coordinates: its uv set and
+// HAS_SHEEN_ROUGHNESS_MAP, FACET_TRANSMISSION (KHR_materials_transmission and _volume) and its
+// HAS_TRANSMISSION_MAP, HAS_THICKNESS_MAP, <SLOT>_UV (a texture's coordinates: its uv set and
 // KHR_texture_transform) and NORMAL_TANGENT_FRAME, USE_IBL, BRDF_THESIS (the thesis' model
 // instead of glTF's), MULTISCATTER (energy compensation), DOMINANT_DIRECTION (bent specular
 // lookup), VIEW (what is written: render/views.glsl).
@@ -143,6 +144,12 @@ layout(location = 5) in vec2 in_uv1;
 #ifndef SHEEN_ROUGHNESS_UV
 #define SHEEN_ROUGHNESS_UV in_uv
 #endif
+#ifndef TRANSMISSION_UV
+#define TRANSMISSION_UV in_uv
+#endif
+#ifndef THICKNESS_UV
+#define THICKNESS_UV in_uv
+#endif
 
 layout(location = 0) out vec4 out_color;
 
@@ -151,6 +158,7 @@ struct Surface {
     FacetSurface shading;
     float alpha;
     vec3 emissive;
+    float thickness;  // KHR_materials_volume, in the mesh's units (0: thin-walled)
 };
 
 Surface surface_at(MaterialData m) {
@@ -276,6 +284,19 @@ Surface surface_at(MaterialData m) {
 #endif
     facet_surface_sheen(s.shading, clamp(sheen_color, 0.0, 1.0), clamp(sheen_roughness, 0.0, 1.0));
 #endif
+    s.thickness = 0.0;
+#ifdef FACET_TRANSMISSION
+    // The transmission: its factor times R of its texture; the volume's thickness times G of its own.
+    float transmission = m.transmission.x;
+#ifdef HAS_TRANSMISSION_MAP
+    transmission *= texture(transmission_map, TRANSMISSION_UV).r;
+#endif
+    facet_surface_transmission(s.shading, clamp(transmission, 0.0, 1.0), facet_ior_from_f0(m.emissive_f0.a));
+    s.thickness = m.transmission.y;
+#ifdef HAS_THICKNESS_MAP
+    s.thickness *= texture(thickness_map, THICKNESS_UV).g;
+#endif
+#endif
     return s;
 }
 
@@ -322,6 +343,18 @@ void main() {
 #else
     vec3 light_energy = vec3(1.0);
 #endif
+#ifdef FACET_TRANSMISSION
+    // What lies behind: the view ray leaves the surface at `exit`, refracted by the index
+    // through a volume's thickness (world units: the instance's mean scale), the point
+    // itself where it is thin-walled; its light is attenuated along the way.
+    mat4 world = instances[draw.instance].world;
+    float path = max(surface.thickness, 0.0) * (length(world[0].xyz) + length(world[1].xyz) + length(world[2].xyz)) / 3.0;
+    vec3 refracted = refract(-v, n, 1.0 / facet_ior_from_f0(m.emissive_f0.a));
+    vec3 exit = in_world + (path > 0.0 && dot(refracted, refracted) > 0.0 ? normalize(refracted) * path : vec3(0.0));
+    vec3 through_direction = normalize(exit - frame.camera_position.xyz);
+    vec3 transmittance = facet_volume_transmittance(m.attenuation.rgb, m.transmission.z, path);
+    vec3 through = vec3(0.0);  // the transmitted light
+#endif
     // The component views show the terms for the first light, or for the mirror
     // direction (h = n) when the scene has no light.
     vec3 view_l = reflect(-v, n);
@@ -335,6 +368,9 @@ void main() {
         }
         vec3 light_diffuse, light_specular;
         facet_reflect_light(s, v, NdotV, l, incident, true, light_diffuse, light_specular);
+#ifdef FACET_TRANSMISSION
+        if (dot(n, l) < 0.0) light_diffuse *= transmittance;  // light from behind crosses the volume
+#endif
         diffuse += light_diffuse;
         specular += light_energy * light_specular;
     }
@@ -351,6 +387,12 @@ void main() {
     float disk_specular_weight = facet_disk_specular_weight(lookups, frame.ibl.z);
     // The DISK_LIGHTS disks, constants of the pipeline.
     vec3 disk_diffuse_sum = vec3(0.0), disk_specular_sum = vec3(0.0), disk_coat_sum = vec3(0.0);
+    vec3 disk_through_sum = vec3(0.0);
+#ifdef FACET_TRANSMISSION
+#define FACET_DISK_THROUGH(disk) disk_through = facet_disk_transmission(s, v, NdotV, disk);
+#else
+#define FACET_DISK_THROUGH(disk)
+#endif
 #ifdef CLEARCOAT
 #define FACET_DISK_CLEARCOAT(disk)                                                                                 \
     float below;                                                                                                   \
@@ -358,6 +400,7 @@ void main() {
     facet_disk_clearcoat(s, v, disk, below, coat_specular);                                                        \
     disk_diffuse *= below;                                                                                         \
     disk_specular *= below;                                                                                        \
+    disk_through *= below;                                                                                         \
     disk_coat_sum += coat_specular;
 #else
 #define FACET_DISK_CLEARCOAT(disk)
@@ -368,25 +411,29 @@ void main() {
 #define FACET_DISK_SHEEN(disk)                                                                                     \
     vec3 disk_sheen = facet_sheen_light(s, v, NdotV, disk.direction, disk.radiance * disk.solid_angle,            \
                                         disk_diffuse, disk_specular);                                              \
+    disk_through *= facet_sheen_scaling(s, NdotV);                                                                 \
     disk_diffuse += disk_sheen;
 #else
 #define FACET_DISK_SHEEN(disk)
 #endif
 #define FACET_DISK(i)                                                                                              \
     if (i < DISK_LIGHTS) {                                                                                         \
-        vec3 disk_diffuse, disk_specular;                                                                          \
+        vec3 disk_diffuse, disk_specular, disk_through = vec3(0.0);                                                \
         FacetDiskLight disk = unpack_disk_light(FACET_DISK_LIGHT_##i);                                             \
         facet_disk_light(s, v, NdotV, disk, disk_diffuse, disk_specular);                                          \
+        FACET_DISK_THROUGH(disk)                                                                                   \
         FACET_DISK_SHEEN(disk)                                                                                     \
         FACET_DISK_CLEARCOAT(disk)                                                                                 \
         disk_diffuse_sum += disk_diffuse;                                                                          \
         disk_specular_sum += disk_specular;                                                                        \
+        disk_through_sum += disk_through;                                                                          \
     }
     FACET_DISK(0) FACET_DISK(1) FACET_DISK(2) FACET_DISK(3) FACET_DISK(4) FACET_DISK(5) FACET_DISK(6) FACET_DISK(7)
     FACET_DISK(8) FACET_DISK(9) FACET_DISK(10) FACET_DISK(11) FACET_DISK(12) FACET_DISK(13) FACET_DISK(14) FACET_DISK(15)
 #undef FACET_DISK
 #undef FACET_DISK_CLEARCOAT
 #undef FACET_DISK_SHEEN
+#undef FACET_DISK_THROUGH
     diffuse += disk_diffuse_sum * frame.ibl.x * s.occlusion;
     specular += disk_specular_sum * disk_specular_weight * frame.ibl.x * s.occlusion;
 #ifdef CLEARCOAT
@@ -407,12 +454,48 @@ void main() {
     env.specular += env_sheen;
 #endif
     facet_environment_clearcoat(s, v, lut, brdf_lut, specular_map, specular_levels, frame.ibl.x, env);
+#ifdef FACET_TRANSMISSION
+    // The environment behind along the exit point's view ray, at the transmitted lobe's
+    // roughness, and the disks behind (the levels below frame.ibl.z still hold them).
+    float through_lod = facet_specular_lod(s.transmission_roughness, specular_levels);
+    vec3 through_albedo = facet_transmission_albedo(s, facet_brdf_lut(brdf_lut, NdotV, s.transmission_roughness));
+    through = s.transmission * s.albedo * through_albedo * textureLod(specular_map, through_direction, through_lod).rgb *
+                  frame.ibl.x +
+              disk_through_sum * facet_disk_specular_weight(s.transmission_roughness, specular_levels, frame.ibl.z) *
+                  frame.ibl.x;
+#endif
     diffuse += env.diffuse;
     specular += env.specular;
     irradiance = env.irradiance;
     prefiltered = env.prefiltered;
 #endif
 
+#ifdef FACET_TRANSMISSION
+    {
+#ifndef USE_IBL
+        vec3 F_n, through_albedo;
+        facet_fresnel(s, NdotV, F_n, through_albedo);  // no LUT: the weight at n.v
+#endif
+#if VIEW == VIEW_FINAL
+        // The opaque scene behind, where it covers the exit point (the transmission
+        // background, mipmapped: a blur as wide as the lobe's, log2(width) x its roughness,
+        // the Khronos glTF sample viewer's choice), over the environment.
+        vec4 clip = frame.view_projection * vec4(exit, 1.0);
+        if (clip.w > 0.0) {
+            vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+            float lod = log2(float(textureSize(transmission_background, 0).x)) * s.transmission_roughness;
+            vec4 scene = textureLod(transmission_background, uv, lod);
+            through = s.transmission * s.albedo * through_albedo * scene.rgb + (1.0 - scene.a) * through;
+        }
+#endif
+        // A sheen and a clear coat over the surface dim it as they dim the base's light.
+#ifdef FACET_SHEEN
+        through *= facet_sheen_scaling(s, NdotV);
+#endif
+        through *= (1.0 - facet_clearcoat_fresnel(s, NdotV)) * transmittance;
+        diffuse += through;
+    }
+#endif
 #ifdef UNLIT
     // An unlit surface's colour is its base colour: no lobe, no lookup, no BRDF term (the
     // component views show it as diffuse, the others 0).

@@ -59,6 +59,9 @@ layout(binding = 21) uniform sampler2D sheen_color_map;          // KHR_material
 layout(binding = 22) uniform sampler2D sheen_roughness_map;      // A x sheenRoughnessFactor
 layout(binding = 23) uniform sampler2D transmission_map;         // KHR_materials_transmission: R x transmissionFactor
 layout(binding = 24) uniform sampler2D thickness_map;            // KHR_materials_volume: G x thicknessFactor
+// What transmissive surfaces see behind them: the opaque scene drawn without them
+// (premultiplied colour, alpha its coverage; mipmapped), transparent black elsewhere.
+layout(binding = 25) uniform sampler2D transmission_background;
 
 layout(push_constant) uniform Draw {
     uint instance;

@@ -150,22 +150,37 @@ private:
     Result<const Pipeline*> material_pipeline(const GpuScene& scene, uint32_t instance, View view,
                                               const Target& target, bool ibl, const FrameSettings& settings,
                                               const std::vector<ShaderDefine>& disk_defines);
+    // `opaque_background`: only the instances the transmission background draws (the others null).
     Result<std::vector<const Pipeline*>> pipelines(const GpuScene& scene, View view, const Target& target,
-                                                   bool ibl, const FrameSettings& settings);
+                                                   bool ibl, const FrameSettings& settings,
+                                                   bool opaque_background = false);
     DrawList draw_list(const GpuScene& scene, glm::vec3 camera_position) const;
     // Adds one graphics pass drawing every instance with `pipelines` (shared by the
-    // forward pass and the views).
+    // forward pass and the views), or with `opaque_background` only the opaque instances
+    // without a transmission; `background`, when valid, is what transmissive surfaces see
+    // behind them (sampled).
     ForwardOutputs add_draw_pass(RenderGraph& graph, const std::string& name, const GpuScene& scene,
                                  const FrameSettings& settings, const CameraMatrices& camera,
                                  const ForwardTargets& targets, const std::optional<IblInputs>& ibl,
-                                 std::vector<const Pipeline*> pipelines, uint32_t frame);
+                                 std::vector<const Pipeline*> pipelines, uint32_t frame,
+                                 bool opaque_background = false, ImageHandle background = {});
+    // KHR_materials_transmission: the opaque scene without the transmissive instances drawn
+    // into a mipmapped RGBA16F image of the target's size (premultiplied colour, alpha its
+    // coverage); returns it, or an invalid handle where no instance transmits.
+    Result<ImageHandle> add_transmission_background(RenderGraph& graph, const GpuScene& scene,
+                                                    const FrameSettings& settings, const CameraMatrices& camera,
+                                                    uint32_t width, uint32_t height,
+                                                    const std::optional<IblInputs>& ibl, uint32_t frame);
     Slot& slot(uint32_t frame);
     ForwardRenderer(Context& context, ProgramCache& programs, uint32_t frames_in_flight);
 
     Context& context_;
     ProgramCache& programs_;
     std::vector<Slot> slots_;
-    Sampler nearest_, lut_sampler_;
+    Sampler nearest_, lut_sampler_, background_sampler_;
+    // Binding 25 where there is no transmission background: transparent black.
+    Image no_background_;
+    VkImageView no_background_view_ = VK_NULL_HANDLE;
     // The fitted lookups' table (render/specular_lobes.h), uploaded once.
     Image lobe_table_;
     VkImageView lobe_table_view_ = VK_NULL_HANDLE;
