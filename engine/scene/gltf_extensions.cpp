@@ -26,7 +26,9 @@ const std::vector<std::string_view>& supported_extensions() {
             "KHR_materials_iridescence",        // gltf_material_extensions.cpp; drawn by forward.frag (FACET_IRIDESCENCE)
             "KHR_materials_sheen",              // gltf_material_extensions.cpp; drawn by forward.frag (FACET_SHEEN)
             "KHR_materials_specular",           // gltf_material_extensions.cpp; drawn by forward.frag
+            "KHR_materials_transmission",       // gltf_material_extensions.cpp; drawn by forward.frag (FACET_TRANSMISSION)
             "KHR_materials_unlit",              // gltf_material_extensions.cpp; drawn by forward.frag (UNLIT)
+            "KHR_materials_volume",             // gltf_material_extensions.cpp; drawn by forward.frag (FACET_TRANSMISSION)
             "KHR_mesh_quantization",            // gltf_attributes.cpp: every component type, normalized or not
             "KHR_texture_transform",            // gltf_material_extensions.cpp; drawn by forward_pass.cpp
         };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "scene/gltf_errors.h"
 #include "scene/gltf_materials.h"
@@ -117,6 +118,12 @@ void read_unlit(const tinygltf::Material& m, Material& out) {
     out.anisotropy_texture = {};
     out.sheen_color = glm::vec3(0.0f);
     out.sheen_color_texture = out.sheen_roughness_texture = {};
+    out.transmission = 0.0f;
+    out.transmission_texture = {};
+    out.thickness = 0.0f;
+    out.thickness_texture = {};
+    out.attenuation_distance = std::numeric_limits<float>::infinity();
+    out.attenuation_color = glm::vec3(1.0f);
     out.emissive = glm::vec3(0.0f);
     out.emissive_texture = {};
     out.normal_texture = {};
@@ -184,6 +191,37 @@ void read_sheen(const tinygltf::Model& model, const tinygltf::Material& m, const
     out.sheen_roughness = float(number_within(*sheen, "sheenRoughnessFactor", 0.0, 0.0, 1.0, "[0, 1]", at));
     out.sheen_color_texture = texture_info(model, *sheen, "sheenColorTexture", at);
     out.sheen_roughness_texture = texture_info(model, *sheen, "sheenRoughnessTexture", at);
+}
+
+void read_transmission(const tinygltf::Model& model, const tinygltf::Material& m, const std::string& where,
+                       Material& out) {
+    if (const tinygltf::Value* transmission = extension(m, "KHR_materials_transmission", where)) {
+        const std::string at = where + ": KHR_materials_transmission";
+        out.transmission = float(number_within(*transmission, "transmissionFactor", 0.0, 0.0, 1.0, "[0, 1]", at));
+        out.transmission_texture = texture_info(model, *transmission, "transmissionTexture", at);
+    }
+    const tinygltf::Value* volume = extension(m, "KHR_materials_volume", where);
+    if (!volume) return;
+    const std::string at = where + ": KHR_materials_volume";
+    // Finite doubles can still overflow as floats (1e39) or, for the distance, underflow to 0.
+    const double thickness = number(*volume, "thicknessFactor", 0.0, at);
+    if (thickness < 0.0) fail(at + ".thicknessFactor " + number_text(thickness) + " is negative");
+    if (!std::isfinite(float(thickness)))
+        fail(at + ".thicknessFactor " + number_text(thickness) + " is too large for floats");
+    const double distance = number(*volume, "attenuationDistance", std::numeric_limits<double>::infinity(), at);
+    if (volume->Has("attenuationDistance")) {
+        if (distance <= 0.0) fail(at + ".attenuationDistance " + number_text(distance) + " is not positive");
+        if (!std::isfinite(float(distance)) || float(distance) == 0.0f)
+            fail(at + ".attenuationDistance " + number_text(distance) + " is outside the range of floats");
+    }
+    double colour[3] = {1.0, 1.0, 1.0};
+    numbers(*volume, "attenuationColor", 3, colour, at);
+    for (double c : colour)
+        if (c < 0.0 || c > 1.0) fail(at + ".attenuationColor " + number_text(c) + " is outside [0, 1]");
+    out.thickness = float(thickness);
+    out.thickness_texture = texture_info(model, *volume, "thicknessTexture", at);
+    out.attenuation_distance = float(distance);
+    out.attenuation_color = glm::vec3(float(colour[0]), float(colour[1]), float(colour[2]));
 }
 
 void read_dielectric_extensions(const tinygltf::Model& model, const tinygltf::Material& m, const std::string& where,

@@ -49,6 +49,14 @@ void read_anisotropy(const tinygltf::Model& model, const tinygltf::Material& mat
 void read_sheen(const tinygltf::Model& model, const tinygltf::Material& material, const std::string& where,
                 Material& out);
 
+// KHR_materials_transmission: transmissionFactor (in [0, 1]) and transmissionTexture (R);
+// KHR_materials_volume: thicknessFactor (at least 0), thicknessTexture (G), attenuationDistance
+// (positive; absent: infinite, no attenuation) and attenuationColor (three numbers in [0, 1]).
+// Either one's values out of range are an error; the textures take texCoord and
+// KHR_texture_transform.
+void read_transmission(const tinygltf::Model& model, const tinygltf::Material& material, const std::string& where,
+                       Material& out);
+
 // KHR_materials_ior (the dielectric F0) and KHR_materials_specular: its factors and its two
 // textures (with texCoord and KHR_texture_transform, as the core textures).
 void read_dielectric_extensions(const tinygltf::Model& model, const tinygltf::Material& material,

@@ -74,6 +74,7 @@ Material convert_material(const tinygltf::Model& model, size_t index) {
     read_iridescence(model, m, where, out);
     read_anisotropy(model, m, where, out);
     read_sheen(model, m, where, out);
+    read_transmission(model, m, where, out);
     out.normal_scale = float(m.normalTexture.scale);
     out.occlusion_strength = float(m.occlusionTexture.strength);
     if (m.alphaMode == "OPAQUE") {

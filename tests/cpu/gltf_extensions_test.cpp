@@ -57,8 +57,8 @@ TEST(GltfExtensions, RegistryIsSortedAndHoldsWhatTheLoaderReads) {
     EXPECT_TRUE(std::is_sorted(names.begin(), names.end()));
     for (const char* name : {"EXT_meshopt_compression", "EXT_texture_webp", "KHR_draco_mesh_compression",
                              "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_ior",
-                             "KHR_materials_specular", "KHR_materials_unlit", "KHR_mesh_quantization",
-                             "KHR_texture_transform"})
+                             "KHR_materials_specular", "KHR_materials_transmission", "KHR_materials_unlit",
+                             "KHR_materials_volume", "KHR_mesh_quantization", "KHR_texture_transform"})
         EXPECT_TRUE(is_supported_extension(name)) << name;
     EXPECT_EQ(gltf_supported_extensions(), std::vector<std::string>(names.begin(), names.end()));
     EXPECT_FALSE(is_supported_extension("KHR_materials_made_up"));

@@ -4,10 +4,12 @@
 // specular weight = specularFactor (its textures are drawn: tests/gpu/gltf_features_test.cpp);
 // invalid values an error naming the material. KHR_materials_clearcoat's factors read as they are (the
 // layer's shading is tested against the truth in tests/gpu/brdf_models_truth_test.cpp).
+// KHR_materials_transmission and KHR_materials_volume: their factors, defaults and textures.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 
@@ -24,16 +26,18 @@ struct TempDir : test::GltfTempDir {
     TempDir() : GltfTempDir("gltf_material_ext") {}
 };
 
-// One triangle whose material 0 has `extensions` (a JSON object's members).
-Result<Scene> load_material(const TempDir& dir, const std::string& extensions) {
+// One triangle whose material 0 has `extensions` (a JSON object's members); `members`: more
+// top-level members, each followed by a comma (textures, images).
+Result<Scene> load_material(const TempDir& dir, const std::string& extensions, const std::string& members = "") {
     const std::string text = R"({"asset": {"version": "2.0"},
   "extensionsUsed": ["KHR_materials_ior", "KHR_materials_specular", "KHR_materials_unlit", "KHR_materials_clearcoat",
-                     "KHR_materials_iridescence", "KHR_materials_anisotropy", "KHR_materials_sheen"],
+                     "KHR_materials_iridescence", "KHR_materials_anisotropy", "KHR_materials_sheen",
+                     "KHR_materials_transmission", "KHR_materials_volume", "KHR_texture_transform"],
   "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],
   "bufferViews": [{"buffer": 0, "byteLength": 36}],
   "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}],
   "materials": [{"name": "glass", "emissiveFactor": [1, 0.5, 0.25], "extensions": {)" + extensions + R"(}}],
-  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
+  )" + members + R"("meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
   "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0})";
     const fs::path path = dir.path / "model.gltf";
     test::write_bytes(path.string(), text);
@@ -190,6 +194,110 @@ TEST(GltfMaterialExtensions, SheenReadsItsFactors) {
     EXPECT_FALSE(unlit->materials[0].has_sheen());
 }
 
+// KHR_materials_transmission's default (factor 0: none) and KHR_materials_volume's (thickness 0:
+// thin-walled; attenuation distance infinite and colour white: no attenuation), and values.
+TEST(GltfMaterialExtensions, TransmissionAndVolumeReadTheirFactors) {
+    TempDir dir;
+    const Result<Scene> plain = load_material(dir, "");
+    ASSERT_TRUE(plain.ok()) << plain.error().message;
+    const Result<Scene> absent = load_material(dir, R"("KHR_materials_transmission": {}, "KHR_materials_volume": {})");
+    ASSERT_TRUE(absent.ok()) << absent.error().message;
+    for (const Material& none : {plain->materials[0], absent->materials[0]}) {
+        EXPECT_EQ(none.transmission, 0.0f);
+        EXPECT_FALSE(none.has_transmission());
+        EXPECT_EQ(none.thickness, 0.0f);
+        EXPECT_TRUE(std::isinf(none.attenuation_distance) && none.attenuation_distance > 0.0f);
+        EXPECT_EQ(none.attenuation_color, glm::vec3(1.0f));
+        EXPECT_FALSE(none.transmission_texture.valid());
+        EXPECT_FALSE(none.thickness_texture.valid());
+    }
+    EXPECT_TRUE(absent->warnings.empty()) << absent->warnings[0];
+    const Result<Scene> scene = load_material(dir, R"("KHR_materials_transmission": {"transmissionFactor": 0.8},
+        "KHR_materials_volume": {"thicknessFactor": 0.25, "attenuationDistance": 2.5,
+                                 "attenuationColor": [0.9, 0.5, 0]})");
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    const Material& m = scene->materials[0];
+    EXPECT_EQ(m.transmission, 0.8f);
+    EXPECT_TRUE(m.has_transmission());
+    EXPECT_EQ(m.thickness, 0.25f);
+    EXPECT_EQ(m.attenuation_distance, 2.5f);
+    EXPECT_EQ(m.attenuation_color, glm::vec3(0.9f, 0.5f, 0.0f));
+    EXPECT_FALSE(m.transmission_texture.valid());
+    EXPECT_FALSE(m.thickness_texture.valid());
+    EXPECT_TRUE(scene->warnings.empty()) << scene->warnings[0];  // both read: neither is warned about
+    // The volume alone is read as given; without transmission nothing crosses it (scene.h).
+    const Result<Scene> volume = load_material(dir, R"("KHR_materials_volume": {"thicknessFactor": 3})");
+    ASSERT_TRUE(volume.ok()) << volume.error().message;
+    EXPECT_EQ(volume->materials[0].thickness, 3.0f);
+    EXPECT_FALSE(volume->materials[0].has_transmission());
+    // The edges of the ranges: factor 1, colour 0 and 1, a positive distance far below any unit.
+    const Result<Scene> edges = load_material(dir, R"("KHR_materials_transmission": {"transmissionFactor": 1},
+        "KHR_materials_volume": {"attenuationDistance": 1e-30, "attenuationColor": [0, 1, 0]})");
+    ASSERT_TRUE(edges.ok()) << edges.error().message;
+    EXPECT_EQ(edges->materials[0].transmission, 1.0f);
+    EXPECT_EQ(edges->materials[0].attenuation_distance, 1e-30f);
+    EXPECT_EQ(edges->materials[0].attenuation_color, glm::vec3(0.0f, 1.0f, 0.0f));
+}
+
+// One 2x2 PNG (data uri) as texture 0, for the extensions' textureInfo members.
+const char* kOneTexture = R"("textures": [{"source": 0}],
+  "images": [{"uri": "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAIAAAACCAYAAABytg0kAAAACW9GRnMAAAAAAAAAAADaKrbOAAAAFUlEQVQImWNgUPXKn7LzHjOTBhQAACxUBE+BIpn8AAAAAElFTkSuQmCC"}],
+  )";
+
+// Both textures are textureInfo: texCoord and KHR_texture_transform (its matrix and its
+// overriding texCoord) as on the core textures.
+TEST(GltfMaterialExtensions, TransmissionAndThicknessTexturesTakeTexCoordAndTransform) {
+    TempDir dir;
+    const Result<Scene> scene = load_material(dir, R"("KHR_materials_transmission": {"transmissionFactor": 1,
+            "transmissionTexture": {"index": 0, "texCoord": 1}},
+        "KHR_materials_volume": {"thicknessFactor": 0.5, "thicknessTexture": {"index": 0, "extensions":
+            {"KHR_texture_transform": {"offset": [0.5, 0.25], "rotation": 0.5, "scale": [2, 3], "texCoord": 1}}}})",
+                                              kOneTexture);
+    ASSERT_TRUE(scene.ok()) << scene.error().message;
+    EXPECT_TRUE(scene->warnings.empty()) << scene->warnings[0];
+    const Material& m = scene->materials[0];
+    ASSERT_TRUE(m.transmission_texture.valid());
+    EXPECT_EQ(m.transmission_texture.image, 0);
+    EXPECT_EQ(m.transmission_texture.uv_set, 1u);
+    EXPECT_FALSE(m.transmission_texture.transformed());
+    ASSERT_TRUE(m.thickness_texture.valid());
+    EXPECT_EQ(m.thickness_texture.image, 0);
+    EXPECT_EQ(m.thickness_texture.uv_set, 1u);  // the transform's texCoord overrides the default 0
+    // The extension's matrix: translation x rotation x scale.
+    const double c = std::cos(0.5), s = std::sin(0.5);
+    const double expected[6] = {c * 2, s * 2, -s * 3, c * 3, 0.5, 0.25};
+    for (int k = 0; k < 6; ++k) EXPECT_NEAR(m.thickness_texture.uv_transform[size_t(k)], expected[k], 1e-6) << k;
+    // Only TEXCOORD_0 and _1 exist on vertices.
+    const Result<Scene> refused = load_material(
+        dir, R"("KHR_materials_transmission": {"transmissionTexture": {"index": 0, "texCoord": 2}})", kOneTexture);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_EQ(refused.error().message,
+              (dir.path / "model.gltf").string() +
+                  ": material 'glass': KHR_materials_transmission: transmissionTexture uses TEXCOORD_2; only "
+                  "TEXCOORD_0 and TEXCOORD_1 are supported");
+}
+
+// The extensions exclude unlit: an unlit surface transmits nothing and has no volume.
+TEST(GltfMaterialExtensions, UnlitClearsTransmissionAndVolume) {
+    TempDir dir;
+    const Result<Scene> unlit = load_material(dir, R"("KHR_materials_transmission": {"transmissionFactor": 1,
+            "transmissionTexture": {"index": 0}},
+        "KHR_materials_volume": {"thicknessFactor": 2, "thicknessTexture": {"index": 0}, "attenuationDistance": 0.5,
+                                 "attenuationColor": [0.5, 0.5, 0.5]},
+        "KHR_materials_unlit": {})",
+                                              kOneTexture);
+    ASSERT_TRUE(unlit.ok()) << unlit.error().message;
+    const Material& m = unlit->materials[0];
+    EXPECT_TRUE(m.unlit);
+    EXPECT_FALSE(m.has_transmission());
+    EXPECT_EQ(m.transmission, 0.0f);
+    EXPECT_FALSE(m.transmission_texture.valid());
+    EXPECT_EQ(m.thickness, 0.0f);
+    EXPECT_FALSE(m.thickness_texture.valid());
+    EXPECT_TRUE(std::isinf(m.attenuation_distance));
+    EXPECT_EQ(m.attenuation_color, glm::vec3(1.0f));
+}
+
 TEST(GltfMaterialExtensions, InvalidValuesAreErrorsNamingTheMaterial) {
     TempDir dir;
     const std::string file = (dir.path / "model.gltf").string();
@@ -235,6 +343,42 @@ TEST(GltfMaterialExtensions, InvalidValuesAreErrorsNamingTheMaterial) {
          "material 'glass': KHR_materials_sheen: sheenColorTexture texture 1 out of range (0 textures)"},
         {R"("KHR_materials_sheen": {"sheenRoughnessTexture": {"index": 0, "texCoord": "one"}})",
          "material 'glass': KHR_materials_sheen.sheenRoughnessTexture.texCoord must be an integer"},
+        {R"("KHR_materials_transmission": {"transmissionFactor": 1.5})",
+         "material 'glass': KHR_materials_transmission.transmissionFactor 1.5 is outside [0, 1]"},
+        {R"("KHR_materials_transmission": {"transmissionFactor": -0.25})",
+         "material 'glass': KHR_materials_transmission.transmissionFactor -0.25 is outside [0, 1]"},
+        {R"("KHR_materials_transmission": {"transmissionFactor": "half"})",
+         "material 'glass': KHR_materials_transmission.transmissionFactor must be a finite number"},
+        {R"("KHR_materials_transmission": {"transmissionTexture": {"index": 0}})",
+         "material 'glass': KHR_materials_transmission: transmissionTexture texture 0 out of range (0 textures)"},
+        {R"("KHR_materials_volume": {"thicknessFactor": -1})",
+         "material 'glass': KHR_materials_volume.thicknessFactor -1 is negative"},
+        {R"("KHR_materials_volume": {"thicknessFactor": 1e39})",
+         "material 'glass': KHR_materials_volume.thicknessFactor 1e+39 is too large for floats"},
+        {R"("KHR_materials_volume": {"thicknessFactor": [1]})",
+         "material 'glass': KHR_materials_volume.thicknessFactor must be a finite number"},
+        {R"("KHR_materials_volume": {"thicknessTexture": {"index": "zero"}})",
+         "material 'glass': KHR_materials_volume.thicknessTexture.index must be an integer"},
+        {R"("KHR_materials_volume": {"attenuationDistance": 0})",
+         "material 'glass': KHR_materials_volume.attenuationDistance 0 is not positive"},
+        {R"("KHR_materials_volume": {"attenuationDistance": -2})",
+         "material 'glass': KHR_materials_volume.attenuationDistance -2 is not positive"},
+        {R"("KHR_materials_volume": {"attenuationDistance": "far"})",
+         "material 'glass': KHR_materials_volume.attenuationDistance must be a finite number"},
+        {R"("KHR_materials_volume": {"attenuationDistance": 1e39})",
+         "material 'glass': KHR_materials_volume.attenuationDistance 1e+39 is outside the range of floats"},
+        {R"("KHR_materials_volume": {"attenuationDistance": 1e-50})",
+         "material 'glass': KHR_materials_volume.attenuationDistance 1e-50 is outside the range of floats"},
+        {R"("KHR_materials_volume": {"attenuationColor": [1, 1.5, 0]})",
+         "material 'glass': KHR_materials_volume.attenuationColor 1.5 is outside [0, 1]"},
+        {R"("KHR_materials_volume": {"attenuationColor": [-0.5, 1, 1]})",
+         "material 'glass': KHR_materials_volume.attenuationColor -0.5 is outside [0, 1]"},
+        {R"("KHR_materials_volume": {"attenuationColor": [1, 1]})",
+         "material 'glass': KHR_materials_volume.attenuationColor must have 3 numbers"},
+        {R"("KHR_materials_volume": {"attenuationColor": [1, 1, 1, 1]})",
+         "material 'glass': KHR_materials_volume.attenuationColor must have 3 numbers"},
+        {R"("KHR_materials_volume": {"attenuationColor": [1, "red", 1]})",
+         "material 'glass': KHR_materials_volume.attenuationColor must have 3 finite numbers"},
         {R"("KHR_materials_clearcoat": {"clearcoatFactor": 2})",
          "material 'glass': KHR_materials_clearcoat.clearcoatFactor 2 is outside [0, 1]"},
         {R"("KHR_materials_clearcoat": {"clearcoatRoughnessFactor": -0.5})",
