@@ -781,6 +781,9 @@ FacetEnvironmentLight facet_environment_light(FacetSurface s, vec3 v, float Ndot
         if (k.weight[i] > 0.0) env.prefiltered += k.weight[i] * textureLod(specular_map, k.direction[i], k.lod[i]).rgb;
     env.prefiltered *= intensity;
     env.diffuse = kd * s.albedo * env.irradiance * s.occlusion;
+#ifdef FACET_TRANSMISSION
+    env.diffuse *= 1.0 - s.transmission;  // the rest of the base's light is transmitted (forward.frag)
+#endif
     env.specular += env.prefiltered * E * s.occlusion;
     return env;
 }

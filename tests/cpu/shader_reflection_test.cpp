@@ -122,7 +122,8 @@ TEST(ShaderReflection, ForwardVertexAndFragmentMergeIntoOneLayout) {
                      {21, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},    // KHR_materials_sheen's two
                      {22, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                      {23, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},    // KHR_materials_transmission's
-                     {24, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},   // KHR_materials_volume's
+                     {24, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},    // KHR_materials_volume's
+                     {25, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},   // the transmission background
                     "forward");
     EXPECT_EQ(merged->push_constant_bytes, 8u);  // uint instance, uint material
 }
