@@ -74,7 +74,7 @@ Result<ReferenceStats> ReferenceRenderer::accumulate(const ReferenceSurface& sur
                                                      const ReferenceSettings& settings, const Progress& progress) try {
     if (!surface.normal || !surface.position || !surface.basecolor || !surface.metallic || !surface.roughness ||
         !surface.f0 || !surface.emissive || !surface.clearcoat || !surface.clearcoat_normal ||
-        !surface.iridescence || !surface.anisotropy || !surface.sheen)
+        !surface.iridescence || !surface.anisotropy || !surface.sheen || !surface.transmission)
         return Error{"reference: every surface view is needed"};
     if (settings.batch_samples == 0 || settings.max_samples == 0)
         return Error{"reference: the sample counts must be at least 1"};
@@ -112,14 +112,14 @@ Result<ReferenceStats> ReferenceRenderer::accumulate(const ReferenceSurface& sur
     }));
 
     ReferenceStats stats;
-    // Bindings 0-6, then 12-16 (render/reference.comp).
+    // Bindings 0-6, then 12-17 (render/reference.comp).
     const Image* views[] = {surface.normal,   surface.position, surface.basecolor, surface.metallic, surface.roughness,
                             surface.f0,       surface.emissive, surface.clearcoat, surface.clearcoat_normal,
-                            surface.iridescence, surface.anisotropy, surface.sheen};
+                            surface.iridescence, surface.anisotropy, surface.sheen, surface.transmission};
     const char* view_names[] = {"normal", "position", "basecolor", "metallic", "roughness",
                                 "f0",     "emissive", "clearcoat", "clearcoat normal",
-                                "iridescence", "anisotropy", "sheen"};
-    constexpr int kViews = 12, kFirstViewsInOrder = 7;
+                                "iridescence", "anisotropy", "sheen", "transmission"};
+    constexpr int kViews = 13, kFirstViewsInOrder = 7;
     while (stats.samples < settings.max_samples) {
         const uint32_t count = std::min(settings.batch_samples, settings.max_samples - stats.samples);
         RenderGraph graph;

@@ -91,7 +91,7 @@ Result<RenderedImages> RenderSession::render_reference(const ReferenceSettings& 
     const std::vector<View> surface_views = {View::normal, View::position, View::basecolor, View::metallic,
                                              View::roughness, View::specular_f0, View::emissive,
                                              View::clearcoat, View::clearcoat_normal, View::iridescence,
-                                             View::anisotropy, View::sheen};
+                                             View::anisotropy, View::sheen, View::transmission};
     FrameSettings surface_frame = s.frame;
     surface_frame.views = surface_views;
     for (View v : s.frame.views)
@@ -115,7 +115,8 @@ Result<RenderedImages> RenderSession::render_reference(const ReferenceSettings& 
                                    view_image(View::metallic),  view_image(View::roughness), view_image(View::specular_f0),
                                    view_image(View::emissive), view_image(View::clearcoat),
                                    view_image(View::clearcoat_normal), view_image(View::iridescence),
-                                   view_image(View::anisotropy), view_image(View::sheen)};
+                                   view_image(View::anisotropy), view_image(View::sheen),
+                                   view_image(View::transmission)};
     auto stats = s.reference->accumulate(surface, s.frame, settings, progress);
     if (!stats) return stats.error();
     if (stats_out) *stats_out = *stats;

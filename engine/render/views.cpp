@@ -7,7 +7,8 @@ namespace {
 constexpr const char* kViewNames[] = {"final", "normal", "position", "basecolor", "metallic",
                                       "roughness", "occlusion", "emissive", "D", "F", "G",
                                       "diffuse", "specular", "irradiance", "prefiltered", "f0",
-                                      "clearcoat", "clearcoat_normal", "iridescence", "anisotropy", "sheen"};
+                                      "clearcoat", "clearcoat_normal", "iridescence", "anisotropy", "sheen",
+                                      "transmission"};
 constexpr int kViewCount = sizeof(kViewNames) / sizeof(kViewNames[0]);
 }  // namespace
 

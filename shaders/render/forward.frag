@@ -542,6 +542,8 @@ void main() {
     out_color = vec4(s.anisotropy_t, s.anisotropy);
 #elif VIEW == VIEW_SHEEN
     out_color = vec4(s.sheen_color, s.sheen_roughness);
+#elif VIEW == VIEW_TRANSMISSION
+    out_color = vec4(s.transmission, s.transmission_roughness, surface.thickness, 1.0);
 #elif defined(UNLIT)
     out_color = vec4(0.0, 0.0, 0.0, 1.0);  // D, F, G: no BRDF
 #else

@@ -13,6 +13,7 @@
 #define FACET_IRIDESCENCE 1
 #define FACET_ANISOTROPY 1
 #define FACET_SHEEN 1
+#define FACET_TRANSMISSION 1
 #include "facet/shading.glsl"
 #include "ibl/equirect.glsl"
 #include "ibl/sampling.glsl"
@@ -39,6 +40,7 @@ layout(binding = 13) uniform sampler2D clearcoat_normal_view;  // the clear coat
 layout(binding = 14) uniform sampler2D iridescence_view;       // KHR_materials_iridescence: weight, ior, thickness
 layout(binding = 15) uniform sampler2D anisotropy_view;        // KHR_materials_anisotropy: direction, strength
 layout(binding = 16) uniform sampler2D sheen_view;             // KHR_materials_sheen: colour, roughness
+layout(binding = 17) uniform sampler2D transmission_view;      // KHR_materials_transmission: weight, lobe roughness
 
 layout(push_constant) uniform Params {
     vec4 camera_position;  // xyz
@@ -90,6 +92,7 @@ struct Surface {
     float p_specular;  // probability of sampling the specular lobe (of the surface below a clear coat)
     float p_coat;      // probability of sampling the clear coat's lobe
     float p_sheen;     // probability of sampling the sheen's (uniform over the hemisphere)
+    float p_transmission;  // probability of sampling the transmitted lobe (below the surface)
 };
 
 // BRDF x cos x radiance arriving along l (facet/shading.glsl's composition).
@@ -100,7 +103,21 @@ vec3 reflected(Surface s, vec3 l, vec3 radiance, bool punctual) {
 }
 
 // Density of the BRDF sampling strategy over solid angle.
+float reflection_pdf(Surface s, vec3 l);
+
+// The transmitted lobe is the specular lobe mirrored below the surface (facet/transmission.glsl):
+// sampled as the reflection of GGX's normals at its roughness, mirrored, the same density.
 float brdf_pdf(Surface s, vec3 l) {
+    vec3 n = s.shading.n;
+    if (s.p_transmission > 0.0 && dot(n, l) < 0.0) {
+        vec3 h = normalize(s.v + facet_mirrored(n, l));
+        return s.p_transmission *
+               ggx_sample_pdf(clamp(dot(n, h), 0.0, 1.0), dot(h, s.v), s.shading.transmission_roughness);
+    }
+    return (1.0 - s.p_transmission) * reflection_pdf(s, l);
+}
+
+float reflection_pdf(Surface s, vec3 l) {
     vec3 n = s.shading.n;
     float NdotL = dot(n, l);
     float coat_NdotL = s.p_coat > 0.0 ? dot(s.shading.clearcoat_n, l) : 0.0;
@@ -129,7 +146,25 @@ float kronecker(uint i, uint dim, float shift) {
     return fract(shift + float(i + 1u) * alpha);
 }
 
+vec3 sample_reflection(Surface s, vec3 u);
+
+// A direction from the BRDF's lobes; zero where a lobe's sample falls on the side it does not
+// shade (where a transmission makes the side below the surface its lobe's alone).
 vec3 sample_brdf(Surface s, vec3 u) {
+    vec3 n = s.shading.n;
+    if (u.z < s.p_transmission) {
+        vec3 t, b;
+        facet_tangent_frame(n, t, b);
+        vec3 h = mat3(t, b, n) * importance_sample_ggx_tangent(u.xy, s.shading.transmission_roughness);
+        vec3 l = facet_mirrored(n, reflect(-s.v, h));
+        return dot(n, l) < 0.0 ? l : vec3(0.0);
+    }
+    u.z = (u.z - s.p_transmission) / (1.0 - s.p_transmission);
+    vec3 l = sample_reflection(s, u);
+    return s.p_transmission > 0.0 && dot(n, l) < 0.0 ? vec3(0.0) : l;
+}
+
+vec3 sample_reflection(Surface s, vec3 u) {
     if (u.z < s.p_sheen) {
         // Uniform over the hemisphere of n: cos theta = u.x.
         vec3 t, b;
@@ -220,6 +255,13 @@ void main() {
         facet_surface_sheen(s.shading, sheen.rgb, sheen.a);
         s.p_sheen = 0.25;
     }
+    vec4 through = texelFetch(transmission_view, pixel, 0);
+    s.p_transmission = 0.0;
+    if (through.r > 0.0) {
+        s.shading.transmission = through.r;
+        s.shading.transmission_roughness = through.g;
+        s.p_transmission = 0.5 * through.r * (1.0 - s.shading.metallic);
+    }
     vec3 p = position.xyz;
     // An unlit surface (KHR_materials_unlit, points, lines: the metallic view's alpha 0) is
     // its base colour and emission, exactly, with nothing to sample.
@@ -241,7 +283,8 @@ void main() {
         float pe;
         l = sample_environment(vec4(kronecker(i, 3u, shift[3]), kronecker(i, 4u, shift[4]), kronecker(i, 5u, shift[5]),
                                     kronecker(i, 6u, shift[6])), pe);
-        if (pe > 0.0 && (dot(s.shading.n, l) > 0.0 || (s.p_coat > 0.0 && dot(s.shading.clearcoat_n, l) > 0.0))) {
+        if (pe > 0.0 && (dot(s.shading.n, l) > 0.0 || (s.p_coat > 0.0 && dot(s.shading.clearcoat_n, l) > 0.0) ||
+                         s.p_transmission > 0.0)) {
             float pb2 = brdf_pdf(s, l);
             batch_sum += reflected(s, l, env_radiance(l), false) / (pb2 + pe);
         }

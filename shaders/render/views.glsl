@@ -22,4 +22,5 @@
 #define VIEW_IRIDESCENCE 18
 #define VIEW_ANISOTROPY 19
 #define VIEW_SHEEN 20
+#define VIEW_TRANSMISSION 21
 #endif

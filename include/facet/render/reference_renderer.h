@@ -41,6 +41,7 @@ struct ReferenceSurface {
     const Image* iridescence = nullptr;       // View::iridescence: weight, film ior, thickness (nm)
     const Image* anisotropy = nullptr;        // View::anisotropy: direction, strength
     const Image* sheen = nullptr;             // View::sheen: colour, roughness
+    const Image* transmission = nullptr;      // View::transmission: weight, lobe roughness
 };
 
 struct ReferenceStats {

@@ -30,6 +30,7 @@ enum class View : int {
     iridescence = 18,       // KHR_materials_iridescence's weight (r), film ior (g), thickness in nm (b)
     anisotropy = 19,        // KHR_materials_anisotropy's direction (rgb, world) and strength (a)
     sheen = 20,             // KHR_materials_sheen's colour (rgb, linear) and roughness (a)
+    transmission = 21,      // KHR_materials_transmission's weight (r), its lobe's roughness (g), the volume's thickness (b)
 };
 
 const char* view_name(View view);
