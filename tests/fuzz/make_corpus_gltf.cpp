@@ -101,15 +101,18 @@ std::string textured(const std::string& image) {
            R"("specularColorFactor":[1,0.5,0.5],"specularTexture":{"index":0},"specularColorTexture":{"index":0,"texCoord":0}},)"
            R"("KHR_materials_sheen":{"sheenColorFactor":[0.9,0.5,0.2],"sheenRoughnessFactor":0.4,)"
            R"("sheenColorTexture":{"index":0},"sheenRoughnessTexture":{"index":0,"texCoord":0,)"
-           R"("extensions":{"KHR_texture_transform":{"offset":[0.25,0]}}}}}},)"
+           R"("extensions":{"KHR_texture_transform":{"offset":[0.25,0]}}}},)"
+           R"("KHR_materials_transmission":{"transmissionFactor":0.9,"transmissionTexture":{"index":0,"texCoord":0}},)"
+           R"("KHR_materials_volume":{"thicknessFactor":0.5,"attenuationDistance":2,"attenuationColor":[0.9,0.6,0.3],)"
+           R"("thicknessTexture":{"index":0,"extensions":{"KHR_texture_transform":{"rotation":0.5,"scale":[2,2]}}}}}},)"
            R"({"alphaMode":"BLEND","extensions":{"KHR_materials_unlit":{}}}],)"
            R"("textures":[{"source":0,"sampler":0}],)"
            R"("samplers":[{"magFilter":9728,"minFilter":9987,"wrapS":33648,"wrapT":33071}],)"
            R"("images":[)" + image + "],"
            R"("extensionsUsed":["KHR_materials_clearcoat","KHR_materials_emissive_strength","KHR_materials_ior",)"
            R"("KHR_materials_iridescence","KHR_materials_anisotropy","KHR_materials_sheen",)"
-           R"("KHR_materials_specular",)"
-           R"("KHR_materials_unlit","KHR_texture_transform"],)" +
+           R"("KHR_materials_specular","KHR_materials_transmission",)"
+           R"("KHR_materials_unlit","KHR_materials_volume","KHR_texture_transform"],)" +
            kOneNode;
 }
 
