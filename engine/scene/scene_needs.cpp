@@ -1,6 +1,7 @@
 #include <facet/scene/scene_needs.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace facet {
 namespace {
@@ -32,6 +33,13 @@ SceneNeeds scene_needs(const Scene& scene) {
         if (m.clearcoat > 0.0f)
             needs.min_roughness = std::min(needs.min_roughness, std::clamp(m.clearcoat_roughness, 0.0f, 1.0f) *
                                                                     channel_min(scene, m.clearcoat_roughness_texture, 1));
+        // A transmission reads the levels of its lobe's roughness, the surface's times
+        // clamp(2 ior - 2, 0, 1) (facet/transmission.glsl; ior from the dielectric's F0).
+        if (m.has_transmission()) {
+            const float f = std::sqrt(std::clamp(m.dielectric_f0, 0.0f, 0.99f)), ior = (1.0f + f) / (1.0f - f);
+            needs.min_roughness = std::min(needs.min_roughness, std::clamp(m.roughness, 0.0f, 1.0f) * roughness_scale *
+                                                                    std::clamp(2.0f * ior - 2.0f, 0.0f, 1.0f));
+        }
     }
     if (scene.materials.empty()) needs.min_roughness = 0.0f;
     return needs;

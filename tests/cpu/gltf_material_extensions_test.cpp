@@ -196,6 +196,23 @@ TEST(GltfMaterialExtensions, SheenReadsItsFactors) {
 
 // KHR_materials_transmission's default (factor 0: none) and KHR_materials_volume's (thickness 0:
 // thin-walled; attenuation distance infinite and colour white: no attenuation), and values.
+// The transmitted lobe reads the prefiltered levels of its own roughness, the surface's
+// (glTF's default 1 here) times clamp(2 ior - 2, 0, 1) (facet/transmission.glsl): the bake
+// must make them. ior 1.2: 0.4; ior 1.5 and above: the surface's own.
+TEST(GltfMaterialExtensions, TransmissionNeedsTheLevelsOfItsLobe) {
+    TempDir dir;
+    const Result<Scene> low = load_material(dir, R"("KHR_materials_transmission": {"transmissionFactor": 1},
+        "KHR_materials_ior": {"ior": 1.2})");
+    ASSERT_TRUE(low.ok()) << low.error().message;
+    EXPECT_NEAR(scene_needs(*low).min_roughness, 0.4f, 1e-5f);
+    const Result<Scene> glass = load_material(dir, R"("KHR_materials_transmission": {"transmissionFactor": 1})");
+    ASSERT_TRUE(glass.ok()) << glass.error().message;
+    EXPECT_NEAR(scene_needs(*glass).min_roughness, 1.0f, 1e-5f);
+    const Result<Scene> opaque = load_material(dir, R"("KHR_materials_ior": {"ior": 1.2})");
+    ASSERT_TRUE(opaque.ok()) << opaque.error().message;
+    EXPECT_NEAR(scene_needs(*opaque).min_roughness, 1.0f, 1e-5f);
+}
+
 TEST(GltfMaterialExtensions, TransmissionAndVolumeReadTheirFactors) {
     TempDir dir;
     const Result<Scene> plain = load_material(dir, "");
