@@ -13,9 +13,11 @@ constexpr double pi = 3.14159265358979323846;
 
 double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-// Trowbridge-Reitz / GGX (Walter et al. 2007): alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2).
+// Trowbridge-Reitz / GGX (Walter et al. 2007): alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2),
+// the bracket summed as (1 - (n.h)^2) + (n.h)^2 alpha^2: at alpha's floor (alpha^2 1e-8)
+// a2 - 1 + 1 would lose 8 of its digits.
 double ggx_d(double n_h, double a2) {
-    const double q = n_h * n_h * (a2 - 1) + 1;
+    const double q = (1 - n_h * n_h) + n_h * n_h * a2;
     return a2 / (pi * q * q);
 }
 
