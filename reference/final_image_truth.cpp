@@ -13,9 +13,11 @@ constexpr double pi = 3.14159265358979323846;
 
 double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-// Trowbridge-Reitz / GGX (Walter et al. 2007): alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2).
+// Trowbridge-Reitz / GGX (Walter et al. 2007): alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2),
+// the bracket summed as (1 - (n.h)^2) + (n.h)^2 alpha^2: at alpha's floor (alpha^2 1e-8)
+// a2 - 1 + 1 would lose 8 of its digits.
 double ggx_d(double n_h, double a2) {
-    const double q = n_h * n_h * (a2 - 1) + 1;
+    const double q = (1 - n_h * n_h) + n_h * n_h * a2;
     return a2 / (pi * q * q);
 }
 
@@ -35,8 +37,12 @@ const Vec3& coat_normal(const TruthMaterial& m, const Vec3& n) {
     return c[0] == 0 && c[1] == 0 && c[2] == 0 ? n : c;
 }
 
+// Which of the base's specular lobes layer_brdf_cos evaluates: the reflection, or
+// KHR_materials_transmission's thin-walled transmission for l mirrored through the surface.
+enum class Lobe { reflection, transmission };
+
 Vec3 layer_brdf_cos(BrdfModel model, const TruthMaterial& m, const Vec3& n, const Vec3& v, const Vec3& l,
-                    bool punctual);
+                    bool punctual, Lobe lobe = Lobe::reflection);
 
 // Schlick's F for a normal-incidence reflectance r0 at cos theta.
 double schlick(double r0, double cos_theta) {
@@ -197,9 +203,25 @@ double sheen_albedo(double n_v, double roughness) {
 }
 
 Vec3 brdf_cos(BrdfModel model, const TruthMaterial& m, const Vec3& n, const Vec3& v, const Vec3& l, bool punctual) {
-    Vec3 below = layer_brdf_cos(model, m, n, v, l, punctual);
     const double sheen_max = std::max({m.sheen_color[0], m.sheen_color[1], m.sheen_color[2]});
     const double n_l = dot(n, l);
+    // The half vector the clear coat's Fresnel dims the base by: of l, or of l mirrored
+    // through the surface where the base transmits.
+    Vec3 base_l = l;
+    Vec3 below{0, 0, 0};
+    if (n_l > 0) {
+        below = layer_brdf_cos(model, m, n, v, l, punctual);
+    } else if (n_l < 0 && m.transmission > 0) {
+        // KHR_materials_transmission, thin-walled: the specular lobe mirrored through the surface.
+        for (size_t c = 0; c < 3; ++c) base_l[c] = l[c] - 2 * n_l * n[c];
+        below = layer_brdf_cos(model, m, n, v, base_l, punctual, Lobe::transmission);
+        if (sheen_max > 0) {
+            // The sheen's albedo scaling on the view side only; its lobe adds nothing below.
+            const double e = sheen_albedo(std::max(dot(n, v), 1e-9), m.sheen_roughness);
+            const double scaling = 1 - sheen_max * std::min(e, 1.0);
+            for (double& c : below) c *= scaling;
+        }
+    }
     if (sheen_max > 0 && n_l > 0) {
         // KHR_materials_sheen: the material below scaled by the albedo scaling, the sheen's lobe added.
         const double n_v = std::max(dot(n, v), 1e-9);
@@ -212,7 +234,7 @@ Vec3 brdf_cos(BrdfModel model, const TruthMaterial& m, const Vec3& n, const Vec3
         for (size_t c = 0; c < 3; ++c) below[c] = below[c] * scaling + m.sheen_color[c] * lobe;
     }
     if (m.clearcoat <= 0) return below;
-    Vec3 h{v[0] + l[0], v[1] + l[1], v[2] + l[2]};
+    Vec3 h{v[0] + base_l[0], v[1] + base_l[1], v[2] + base_l[2]};
     const double h_len = std::sqrt(dot(h, h));
     if (h_len < 1e-12) return below;
     const double v_h = std::clamp(dot(v, h) / h_len, 0.0, 1.0), s1 = 1 - v_h;
@@ -230,8 +252,17 @@ Vec3 brdf_cos(BrdfModel model, const TruthMaterial& m, const Vec3& n, const Vec3
 
 namespace {
 
+// The transmission lobe's perceptual roughness (the Khronos glTF sample viewer's scaling):
+// r clamp(2 ior - 2, 0, 1), ior = (1 + sqrt F0) / (1 - sqrt F0) of dielectric_f0, so r at
+// ior 1.5 and a mirror-sharp lobe as ior -> 1. Written 4 sqrt F0 / (1 - sqrt F0) (= 2 ior - 2),
+// finite for F0 = 1.
+double transmission_roughness(const TruthMaterial& m) {
+    const double s = std::sqrt(std::clamp(m.dielectric_f0, 0.0, 1.0));
+    return m.roughness * std::clamp(4 * s / std::max(1 - s, 1e-300), 0.0, 1.0);
+}
+
 Vec3 layer_brdf_cos(BrdfModel model, const TruthMaterial& m, const Vec3& n, const Vec3& v, const Vec3& l,
-                    bool punctual) {
+                    bool punctual, Lobe lobe) {
     const double n_l = dot(n, l);
     if (n_l <= 0) return {0, 0, 0};
     // Grazing views: clamped away from 0 so that the thesis' 1 / (4 n.l n.v) stays finite
@@ -242,7 +273,9 @@ Vec3 layer_brdf_cos(BrdfModel model, const TruthMaterial& m, const Vec3& n, cons
     if (h_len < 1e-12) return {0, 0, 0};  // l opposite v: no microfacet reflects it
     for (double& c : h) c /= h_len;
     const double n_h = std::clamp(dot(n, h), 0.0, 1.0), v_h = std::clamp(dot(v, h), 0.0, 1.0);
-    const double alpha = std::max(m.roughness * m.roughness, 1e-4), a2 = alpha * alpha;
+    const bool transmitted = lobe == Lobe::transmission;
+    const double roughness = transmitted ? transmission_roughness(m) : m.roughness;
+    const double alpha = std::max(roughness * roughness, 1e-4), a2 = alpha * alpha;
     double D = ggx_d(n_h, a2);
     // KHR_materials_anisotropy: the stretched lobe and (glTF) its visibility.
     double at = alpha, ab = alpha;
@@ -283,15 +316,20 @@ Vec3 layer_brdf_cos(BrdfModel model, const TruthMaterial& m, const Vec3& n, cons
                 Fm[c] += m.iridescence * (film_m[c] - Fm[c]);
             }
         }
-        const double Fd_max = std::max({Fd[0], Fd[1], Fd[2]});
+        // The dielectric's diffuse and transmission both take what its specular leaves.
+        const double kd = 1 - m.specular_weight * std::max({Fd[0], Fd[1], Fd[2]});
         for (size_t c = 0; c < 3; ++c) {
+            if (transmitted) {
+                f[c] = (1 - m.metallic) * m.transmission * m.albedo[c] * kd * DV;
+                continue;
+            }
             const double dielectric =
-                (1 - m.specular_weight * Fd_max) * m.albedo[c] / pi + m.specular_weight * Fd[c] * DV;
+                (1 - m.transmission) * kd * m.albedo[c] / pi + m.specular_weight * Fd[c] * DV;
             const double metal = Fm[c] * DV;
             f[c] = (1 - m.metallic) * dielectric + m.metallic * metal;
         }
     } else {
-        const double r = m.roughness;
+        const double r = roughness;
         const double k = punctual ? (r + 1) * (r + 1) / 8 : r * r / 2;
         const double G = schlick_g1(n_v, k) * schlick_g1(n_l, k);
         const double spec = D * G / (4 * n_l * n_v);
@@ -305,7 +343,9 @@ Vec3 layer_brdf_cos(BrdfModel model, const TruthMaterial& m, const Vec3& n, cons
         for (size_t c = 0; c < 3; ++c) {
             const double schlick_f = f0s[c] + (1 - f0s[c]) * schlick;
             const double F = w * (schlick_f + m.iridescence * (film[c] - schlick_f));
-            f[c] = (1 - F) * (1 - m.metallic) * m.albedo[c] / pi + F * spec;
+            const double kd = (1 - F) * (1 - m.metallic);
+            f[c] = transmitted ? m.transmission * m.albedo[c] * kd * spec
+                               : (1 - m.transmission) * kd * m.albedo[c] / pi + F * spec;
         }
     }
     return {f[0] * n_l, f[1] * n_l, f[2] * n_l};
@@ -332,8 +372,11 @@ TexelLights texel_lights(const Equirect& env) {
 Vec3 environment_truth(const TexelLights& t, BrdfModel model, const TruthMaterial& m, const Vec3& n, const Vec3& v) {
     Vec3 sum{0, 0, 0};
     for (size_t i = 0; i < t.dir.size(); ++i) {
-        // Below the horizon (of the surface and of its clear coat): brdf_cos is 0.
-        if (dot(n, t.dir[i]) <= 0 && (m.clearcoat <= 0 || dot(coat_normal(m, n), t.dir[i]) <= 0)) continue;
+        // Below the horizon (of the surface and of its clear coat) of a material that
+        // transmits nothing: brdf_cos is 0.
+        if (m.transmission <= 0 && dot(n, t.dir[i]) <= 0 &&
+            (m.clearcoat <= 0 || dot(coat_normal(m, n), t.dir[i]) <= 0))
+            continue;
         const Vec3 f = brdf_cos(model, m, n, v, t.dir[i]);
         for (size_t c = 0; c < 3; ++c) sum[c] += f[c] * t.power[i][c];
     }

@@ -370,5 +370,245 @@ TEST(FinalImageTruth, ShadersSheenAlbedoFitsMatchTheTruth) {
     EXPECT_GT(compared, 600);
 }
 
+// KHR_materials_transmission. A white dielectric that gives all its diffuse to the
+// transmission (ior 1.5: the transmitted lobe has the reflected one's roughness) splits each
+// pair of directions mirrored through the surface into F D V (n.l) above and (1 - F) D V
+// (n.l') below, so under uniform light it returns what a white metal (F = 1) returns: the
+// same lobe's sum, both models, anisotropic too (the reflection's path for l'). About n = +Y
+// the texels below mirror those above, so the quadratures cancel; about a tilted normal they
+// do not, and the lobe's own quadrature error (r 0.2 spans few texels) is what is left.
+TEST(FinalImageTruth, TransmittingWhiteDielectricReturnsWhatAWhiteMetalDoes) {
+    double worst_up = 0, worst_tilted = 0;
+    const Vec3 tilted = unit(0.3, 0.9, 0.2), side = unit(0.9, -0.3, 0.0);  // side . tilted = 0
+    for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis})
+        for (double anisotropy : {0.0, 0.6})
+            for (double r : {0.2, 0.5, 0.9})
+                for (double c : {0.1, 0.4, 0.9, 1.0})
+                    for (bool up : {true, false}) {
+                        TruthMaterial dielectric, metal;
+                        dielectric.transmission = 1;
+                        metal.metallic = 1;
+                        for (TruthMaterial* m : {&dielectric, &metal}) {
+                            m->roughness = r;
+                            m->anisotropy = anisotropy;
+                        }
+                        const Vec3 n = up ? Vec3{0, 1, 0} : tilted;
+                        const Vec3 v = up ? view_at(c)
+                                          : unit(std::sqrt(1 - c * c) * side[0] + c * n[0],
+                                                 std::sqrt(1 - c * c) * side[1] + c * n[1],
+                                                 std::sqrt(1 - c * c) * side[2] + c * n[2]);
+                        const Vec3 got = environment_truth(uniform_light(), model, dielectric, n, v);
+                        const Vec3 want = environment_truth(uniform_light(), model, metal, n, v);
+                        for (size_t k = 0; k < 3; ++k) {
+                            EXPECT_NEAR(got[k], want[k], 1e-3 * want[k])
+                                << brdf_model_name(model) << (up ? " n +Y" : " n tilted") << " anisotropy "
+                                << anisotropy << " r " << r << " n.v " << c;
+                            double& worst = up ? worst_up : worst_tilted;
+                            worst = std::max(worst, std::abs(got[k] - want[k]) / want[k]);
+                        }
+                    }
+    std::printf("transmitting white dielectric against white metal, worst relative difference: n +Y %.2e, "
+                "tilted %.2e\n",
+                worst_up, worst_tilted);
+}
+
+// The transmission's weight enters linearly everywhere (the diffuse's (1 - T), the
+// transmitted lobe's T): T 0.5 returns the mean of T 0 and T 1, per direction and under a
+// sky whose sun lies behind the surface (plain, and under every other layer).
+TEST(FinalImageTruth, TransmissionIsLinearInItsWeight) {
+    const TexelLights sky = texel_lights(sun_sky(128, 64, 200.0, 4.0, 35.0, 60.0));
+    const Vec3 n = unit(-0.41, 0.2, -0.71);             // the sun (0.41, 0.57, 0.71) behind it
+    const Vec3 views[] = {unit(-0.5, -0.3, -0.8), n};  // nearly straight through to the sun, and along n
+    const Vec3 lights[] = {unit(0.41, 0.57, 0.71), unit(0.3, -0.2, 0.6), unit(-0.5, 0.4, -0.3), unit(0.7, 0.7, -0.1)};
+    double worst = 0;
+    for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis})
+        for (bool layered : {false, true}) {
+            TruthMaterial m;
+            m.albedo = {0.9, 0.5, 0.2};
+            m.metallic = 0.3;
+            m.roughness = 0.4;
+            m.specular_weight = 0.7;
+            m.specular_color = {1, 0.8, 0.6};
+            if (layered) {
+                m.clearcoat = 0.6;
+                m.clearcoat_roughness = 0.2;
+                m.sheen_color = {0.5, 0.4, 0.3};
+                m.sheen_roughness = 0.5;
+                m.iridescence = 0.7;
+                m.iridescence_thickness = 400;
+                m.anisotropy = 0.5;
+            }
+            auto at = [&](double t, auto&& f) {
+                m.transmission = t;
+                return f();
+            };
+            auto check = [&](auto&& f, const char* what) {
+                const Vec3 zero = at(0.0, f), half = at(0.5, f), one = at(1.0, f);
+                for (size_t k = 0; k < 3; ++k) {
+                    const double mean = 0.5 * (zero[k] + one[k]);
+                    EXPECT_NEAR(half[k], mean, 1e-9 * (1 + std::abs(mean)))
+                        << brdf_model_name(model) << (layered ? " layered " : " plain ") << what;
+                    worst = std::max(worst, std::abs(half[k] - mean) / (1 + std::abs(mean)));
+                }
+                return one;
+            };
+            for (const Vec3& v : views) {
+                const Vec3 one = check([&] { return environment_truth(sky, model, m, n, v); }, "environment");
+                const Vec3 zero = at(0.0, [&] { return environment_truth(sky, model, m, n, v); });
+                if (&v == &views[0]) EXPECT_GT(one[0], 1.5 * zero[0]) << "the sun shines through";
+                for (const Vec3& l : lights) {
+                    check([&] { return brdf_cos(model, m, n, v, l); }, "brdf_cos");
+                    check([&] { return brdf_cos(model, m, n, v, l, true); }, "brdf_cos punctual");
+                }
+            }
+        }
+    std::printf("transmission 0.5 against the mean of 0 and 1: worst %.1e (relative to 1 + value)\n", worst);
+}
+
+// A light straight behind the surface (l = -v): mirrored, l' reflects v about n, so h = n,
+// D = 1 / (pi alpha_T^2) and, at v = n, V = G / (4 n.l' n.v) = 1/4 in both models; F at
+// v.h = 1 is F0. So f |n.l| = (1 - metallic) T albedo kd_T / (4 pi alpha_T^2).
+TEST(FinalImageTruth, LightStraightBehindTheSurface) {
+    const Vec3 n{0, 0, 1}, behind{0, 0, -1};
+    TruthMaterial m;
+    m.albedo = {0.8, 0.5, 0.2};
+    m.metallic = 0.25;
+    m.transmission = 0.7;
+    m.roughness = 0.6;
+    m.specular_weight = 0.8;
+    m.specular_color = {1, 0.5, 0.25};
+    // glTF, ior 1.5: r_T = r; kd_T = 1 - w max3(min(0.04 x colour, 1)) = 1 - 0.8 x 0.04.
+    {
+        const double alpha = 0.6 * 0.6, dv = 1 / (4 * pi * alpha * alpha);
+        const Vec3 got = brdf_cos(BrdfModel::gltf, m, n, n, behind);
+        for (size_t c = 0; c < 3; ++c)
+            EXPECT_NEAR(got[c], 0.75 * 0.7 * m.albedo[c] * (1 - 0.8 * 0.04) * dv, 1e-12 * got[c]) << c;
+        // The sheen dims it by its view side's albedo scaling, the coat by 1 - c Fc(1) (Fc = 0.04);
+        // neither adds a lobe below the surface.
+        TruthMaterial layered = m;
+        layered.clearcoat = 0.5;
+        layered.clearcoat_roughness = 0.3;
+        layered.sheen_color = {0.6, 0.3, 0.1};
+        layered.sheen_roughness = 0.5;
+        const double sheen = 1 - 0.6 * std::min(sheen_albedo(1.0, 0.5), 1.0);
+        const Vec3 dimmed = brdf_cos(BrdfModel::gltf, layered, n, n, behind);
+        for (size_t c = 0; c < 3; ++c) EXPECT_NEAR(dimmed[c], got[c] * (1 - 0.5 * 0.04) * sheen, 1e-12 * got[c]) << c;
+        // Seen at n.v = 0.6: V = 0.5 / (2 n.v sqrt((n.v)^2 (1 - alpha^2) + alpha^2)), times n.l' = n.v,
+        // Fd = Schlick(0.04 x colour, 0.6) (its largest: the red one's 0.04).
+        const Vec3 v{0.8, 0, 0.6}, l{-0.8, 0, -0.6};
+        const double fd = 0.04 + 0.96 * std::pow(0.4, 5), a2 = alpha * alpha;
+        const double oblique = 1 / (pi * a2) * 0.5 / (2 * 0.6 * std::sqrt(0.36 * (1 - a2) + a2)) * 0.6;
+        const Vec3 seen = brdf_cos(BrdfModel::gltf, m, n, v, l);
+        for (size_t c = 0; c < 3; ++c)
+            EXPECT_NEAR(seen[c], 0.75 * 0.7 * m.albedo[c] * (1 - 0.8 * fd) * oblique, 1e-12 * seen[c]) << c;
+    }
+    // The thesis, ior 1.33: r_T = r clamp(2 x 1.33 - 2, 0, 1) = 0.66 r; F0 = mix(F0 x colour,
+    // albedo, metallic) per channel, w' = mix(0.8, 1, 0.25) = 0.85, kd_T = 1 - w' F0; G = 1 for
+    // either k.
+    {
+        m.dielectric_f0 = std::pow((1.33 - 1) / (1.33 + 1), 2);
+        const double r_t = 0.6 * 0.66, alpha = r_t * r_t, dv = 1 / (4 * pi * alpha * alpha);
+        for (bool punctual : {false, true}) {
+            const Vec3 got = brdf_cos(BrdfModel::thesis, m, n, n, behind, punctual);
+            for (size_t c = 0; c < 3; ++c) {
+                const double f0 = 0.75 * m.dielectric_f0 * m.specular_color[c] + 0.25 * m.albedo[c];
+                EXPECT_NEAR(got[c], 0.75 * 0.7 * m.albedo[c] * (1 - 0.85 * f0) * dv, 1e-12 * got[c]) << c;
+            }
+        }
+    }
+}
+
+// ior 1 (dielectric_f0 0): the transmitted lobe is mirror-sharp whatever the roughness,
+// alpha at the reflection's floor 1e-4: straight through (l = -v) D V (n.l') = kd_T / (4 pi
+// 1e-8 n.v) at h = n; 10 degrees off it, next to nothing. The reflection keeps its roughness.
+TEST(FinalImageTruth, IorOneMakesTheTransmissionMirrorSharp) {
+    TruthMaterial m;
+    m.dielectric_f0 = 0;
+    m.roughness = 0.5;
+    m.transmission = 1;
+    const Vec3 n{0, 1, 0};
+    for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis})
+        for (double c : {1.0, 0.5}) {
+            const Vec3 v = view_at(c), through{-v[0], -v[1], -v[2]};
+            // glTF's V at h = n: 0.5 / (2 n.v sqrt((n.v)^2 (1 - a2) + a2)); the thesis' G (k = r_T^2/2 = 0) is 1.
+            const double a2 = 1e-8, kd = 1 - std::pow(1 - c, 5);  // F0 0: Schlick = (1 - v.h)^5
+            const double v_term =
+                model == BrdfModel::gltf ? 0.5 / (2 * c * std::sqrt(c * c * (1 - a2) + a2)) : 1 / (4 * c * c);
+            const double peak = kd / (pi * a2) * v_term * c;
+            EXPECT_NEAR(brdf_cos(model, m, n, v, through)[0], peak, 1e-9 * peak)
+                << brdf_model_name(model) << " n.v " << c;
+            EXPECT_GT(peak, 1e6);
+            const double t = 10 * pi / 180;  // l turned 10 degrees about z
+            const Vec3 off{through[0] * std::cos(t) - through[1] * std::sin(t),
+                           through[0] * std::sin(t) + through[1] * std::cos(t), 0};
+            const double beside = brdf_cos(model, m, n, v, off)[0];
+            EXPECT_LT(beside, 1e-4) << brdf_model_name(model) << " n.v " << c;
+            EXPECT_GT(beside, 0.0);
+            std::printf("ior 1, %s, n.v %.1f: straight through %.4g, 10 degrees off %.3g\n", brdf_model_name(model), c,
+                        peak, beside);
+            // The reflection at its mirror direction: the roughness 0.5 lobe's (1 / (pi 0.0625)) x V, not the floor's.
+            const Vec3 mirror{-v[0], v[1], 0};
+            EXPECT_LT(brdf_cos(model, m, n, v, mirror)[0], 10.0);
+        }
+}
+
+// No NaN, infinity or negative value from the transmission at the edges: roughness 0, 1e-4
+// and 1; n.v 0 and 1e-6; l exactly in the surface's plane (0 there) and in every direction
+// of a grid; ior 1, 1.5 and infinite (F0 1); plain and under every layer, both models, both
+// k. Below the surface a material that transmits nothing gives exactly 0.
+TEST(FinalImageTruth, TransmissionIsFiniteAndNonNegativeAtTheEdges) {
+    const Vec3 n{0, 1, 0};
+    std::vector<Vec3> directions;
+    for (int i = 0; i <= 12; ++i)  // theta from 0 to pi, the plane itself at i = 6
+        for (int j = 0; j < 16; ++j) {
+            const double theta = i * pi / 12, phi = j * 2 * pi / 16;
+            directions.push_back(
+                {std::sin(theta) * std::cos(phi), i == 6 ? 0.0 : std::cos(theta), std::sin(theta) * std::sin(phi)});
+        }
+    int evaluated = 0;
+    for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis})
+        for (double r : {0.0, 1e-4, 1.0})
+            for (double f0 : {0.0, 0.04, 1.0})
+                for (double c : {0.0, 1e-6, 0.5, 1.0})
+                    for (bool layered : {false, true})
+                        for (bool punctual : {false, true}) {
+                            TruthMaterial m;
+                            m.albedo = {1, 0.5, 0};
+                            m.metallic = 0.5;
+                            m.roughness = r;
+                            m.dielectric_f0 = f0;
+                            m.transmission = 1;
+                            if (layered) {
+                                m.clearcoat = 1;
+                                m.sheen_color = {1, 1, 1};
+                                m.sheen_roughness = 0.5;
+                                m.iridescence = 1;
+                                m.iridescence_thickness = 300;
+                                m.anisotropy = 1;
+                            }
+                            const Vec3 v = view_at(c);
+                            std::vector<Vec3> ls = directions;
+                            // Straight through, the mirror direction, v itself, and in the plane.
+                            ls.insert(ls.end(),
+                                      {Vec3{-v[0], -v[1], -v[2]}, Vec3{-v[0], v[1], 0}, v, Vec3{-v[0], 0, 0}});
+                            for (const Vec3& l : ls) {
+                                TruthMaterial opaque = m;
+                                opaque.transmission = 0;
+                                const Vec3 f = brdf_cos(model, m, n, v, l, punctual);
+                                const Vec3 f_opaque = brdf_cos(model, opaque, n, v, l, punctual);
+                                for (size_t k = 0; k < 3; ++k) {
+                                    ASSERT_TRUE(std::isfinite(f[k]) && f[k] >= 0)
+                                        << brdf_model_name(model) << " r " << r << " F0 " << f0 << " n.v " << c
+                                        << (layered ? " layered" : " plain") << " l " << l[0] << " " << l[1] << " "
+                                        << l[2] << ": " << f[k];
+                                    if (l[1] == 0) EXPECT_EQ(f[k], 0.0) << "in the plane";
+                                    if (l[1] < 0) EXPECT_EQ(f_opaque[k], 0.0) << "below, transmitting nothing";
+                                }
+                                ++evaluated;
+                            }
+                        }
+    std::printf("transmission at the edges: %d evaluations, all finite and non-negative\n", evaluated);
+}
+
 }  // namespace
 }  // namespace facet::test

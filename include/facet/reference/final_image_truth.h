@@ -33,6 +33,9 @@ struct TruthMaterial {
     // sheen_roughness over the material (under a clear coat).
     Vec3 sheen_color{0, 0, 0};
     double sheen_roughness = 0;
+    // KHR_materials_transmission: the part of the dielectric's diffuse (0..1) given to a
+    // thin-walled specular transmission (the light goes through the surface unbent).
+    double transmission = 0;
 };
 
 // KHR_materials_sheen's lobe (sheenColor 1): the "Charlie" D (Conty Estevez and Kulla 2017,
@@ -52,9 +55,9 @@ double sheen_albedo(double n_v, double roughness);
 // matching functions, linear Rec. 709.
 Vec3 thin_film_fresnel(double outside_ior, double film_ior, double cos1, double thickness_nm, const Vec3& base_f0);
 
-// f(l, v) (n.l) for unit n, v (towards the eye) and l (towards the light); zero when l is
-// below the surface. `punctual` picks the thesis' k = (r+1)^2/8 instead of the
-// environment's r^2/2 (the glTF model has no such switch).
+// f(l, v) |n.l| for unit n, v (towards the eye) and l (towards the light); zero when l is
+// below the surface, unless the material transmits. `punctual` picks the thesis' k =
+// (r+1)^2/8 instead of the environment's r^2/2 (the glTF model has no such switch).
 //  gltf:   D GGX (alpha = max(r^2, 1e-4)), V height-correlated Smith,
 //          dielectric = (1 - w max(Fd)) albedo/pi + w Fd D V, Fd = Schlick(F0, v.h) per
 //          channel, F0 = min(dielectric_f0 x specular_color, 1) (KHR_materials_specular),
@@ -72,9 +75,19 @@ Vec3 thin_film_fresnel(double outside_ior, double film_ior, double cos1, double 
 //          f_sheen = sheenColor sheen_dv and the albedo scaling s = min(1 - max3(sheenColor)
 //          min(E(n.v), 1), 1 - max3(sheenColor) min(E(n.l), 1)), E = sheen_albedo (taken at
 //          most 1: the fitted Lambda's lobe exceeds 1 at grazing angles for small roughness);
+//  transmission T (both models, KHR_materials_transmission, thin-walled): above the surface
+//          the diffuse term times (1 - T); below it (n.l < 0) the specular lobe mirrored through
+//          the surface, l' = l - 2 (n.l) n, h = normalize(v + l'): (1 - metallic) T albedo kd_T
+//          DV(n.h, n.v, n.l') |n.l|, kd_T = 1 - w max(Fd) (glTF) or 1 - F (thesis) at v.h (what
+//          the diffuse gets), DV = D V (glTF) or D G / (4 n.l' n.v) (thesis) at the roughness
+//          r_T = r clamp(2 ior - 2, 0, 1), ior = (1 + sqrt F0) / (1 - sqrt F0) of dielectric_f0
+//          (the Khronos sample viewer's; alpha_T = max(r_T^2, 1e-4)); anisotropy and iridescence
+//          as the reflection's for l'; a sheen scales it by 1 - max3(sheenColor) min(E(n.v), 1)
+//          and adds nothing below; zero where T = 0;
 //  clearcoat (both models, the extension's layering): f (1 - c Fc(v.h)) (n.l) + c Fc(v.h)
 //          D V of the model's specular lobe at the layer's roughness (n_c.l), Fc =
-//          Schlick(0.04, v.h), zero where l is below both n and the layer's normal n_c.
+//          Schlick(0.04, v.h) (h of l', transmitted), zero where l is below both n and the
+//          layer's normal n_c and the material transmits nothing.
 Vec3 brdf_cos(BrdfModel model, const TruthMaterial& m, const Vec3& n, const Vec3& v, const Vec3& l,
               bool punctual = false);
 
@@ -86,7 +99,8 @@ struct TexelLights {
 TexelLights texel_lights(const Equirect& env);
 
 // Outgoing radiance at a point with unit normal n seen along unit v (towards the eye):
-// the sum of brdf_cos x power over every texel above the surface.
+// the sum of brdf_cos x power over every texel above the surface (every texel where the
+// material transmits).
 Vec3 environment_truth(const TexelLights& t, BrdfModel model, const TruthMaterial& m, const Vec3& n, const Vec3& v);
 
 }  // namespace facet::test
