@@ -38,19 +38,17 @@ FinalImageTruth final_image_truth(const FinalImageViews& in, const Vec3& eye, co
             throw std::invalid_argument("final_image_accuracy: an image is not " + std::to_string(in.width) + " x " +
                                         std::to_string(in.height) + " RGBA");
     const bool coated = !in.clearcoat.empty(), filmed = !in.iridescence.empty(), stretched = !in.anisotropy.empty(),
-               sheen = !in.sheen.empty();
-    if (sheen && in.sheen.size() != count * 4)
-        throw std::invalid_argument("final_image_accuracy: the sheen image is not " + std::to_string(in.width) + " x " +
-                                    std::to_string(in.height) + " RGBA");
-    if (stretched && in.anisotropy.size() != count * 4)
-        throw std::invalid_argument("final_image_accuracy: the anisotropy image is not " + std::to_string(in.width) +
-                                    " x " + std::to_string(in.height) + " RGBA");
-    if (filmed && in.iridescence.size() != count * 4)
-        throw std::invalid_argument("final_image_accuracy: the iridescence image is not " + std::to_string(in.width) +
-                                    " x " + std::to_string(in.height) + " RGBA");
-    if (coated && (in.clearcoat.size() != count * 4 || in.clearcoat_normal.size() != count * 4))
-        throw std::invalid_argument("final_image_accuracy: the clear coat's images are not " +
-                                    std::to_string(in.width) + " x " + std::to_string(in.height) + " RGBA");
+               sheen = !in.sheen.empty(), through = !in.transmission.empty();
+    // The extensions' views are optional: empty, or of the frame's size.
+    const std::pair<const char*, std::span<const float>> optional[] = {
+        {"sheen", in.sheen},         {"anisotropy", in.anisotropy},     {"iridescence", in.iridescence},
+        {"clear coat", in.clearcoat}, {"clear coat normal", in.clearcoat_normal}, {"transmission", in.transmission}};
+    for (const auto& [name, image] : optional)
+        if (!image.empty() && image.size() != count * 4)
+            throw std::invalid_argument(std::string("final_image_accuracy: the ") + name + " image is not " +
+                                        std::to_string(in.width) + " x " + std::to_string(in.height) + " RGBA");
+    if (coated && in.clearcoat_normal.size() != count * 4)
+        throw std::invalid_argument("final_image_accuracy: the clear coat's normal image is missing");
     // Eligible pixels: covered (the views' alpha and the resolved colour's coverage both
     // 1, so MSAA edges are left out), facing the eye and rough enough.
     std::vector<Pixel> eligible;
@@ -87,6 +85,7 @@ FinalImageTruth final_image_truth(const FinalImageViews& in, const Vec3& eye, co
             m.sheen_color = {in.sheen[i * 4], in.sheen[i * 4 + 1], in.sheen[i * 4 + 2]};
             m.sheen_roughness = in.sheen[i * 4 + 3];
         }
+        if (through) m.transmission = in.transmission[i * 4];
         eligible.push_back({i, n, v, m, group_of(roughness, metallic)});
     }
     // An even stride through the eligible pixels (scan order) down to the budget.

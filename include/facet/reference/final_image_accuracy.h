@@ -28,6 +28,7 @@ struct FinalImageViews {
     std::span<const float> iridescence;  // View::iridescence: weight, film ior, thickness (empty: no film)
     std::span<const float> anisotropy;   // View::anisotropy: direction, strength (empty: none)
     std::span<const float> sheen;        // View::sheen: colour, roughness (empty: none)
+    std::span<const float> transmission; // View::transmission: weight (r) (empty: none)
 };
 
 struct AccuracySettings {
