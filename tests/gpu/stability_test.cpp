@@ -244,7 +244,8 @@ TEST_F(StabilityTest, SpecularMethodsNeverFailSilently) {
 }
 
 // The forward pass where shading formulas divide by small numbers: roughness 0, 1e-4
-// and 1 (dielectric and metal spheres), silhouettes (n.v -> 0), a plane seen at 0.5
+// and 1 (dielectric and metal spheres; then the dielectrics half transmissive through a
+// volume, one of index 1), silhouettes (n.v -> 0), a plane seen at 0.5
 // degrees, with a light of 1e3, for both BRDF models and the shading methods that sum or
 // sample (the automatic choice, lights with the dominant direction), under the built-in sky, a 0.5-degree sun of 1e5, the studio's softboxes,
 // a black and a uniform environment: every pixel of the image and of every view finite
@@ -266,58 +267,76 @@ TEST_F(StabilityTest, ShadingAtRoughnessZeroAndGrazingAnglesStaysFinite) {
         instance.world[3] = glm::vec4(2.5f * float(i % 3), 2.5f * float(i / 3), 0.0f, 1.0f);
         scene.instances.push_back(instance);
     }
+    // The same with the dielectrics half transmissive through a volume (the background pass
+    // and the mirrored lobe), one of index 1 (F0 0: a mirror-sharp transmitted lobe), under the
+    // sun of 1e5 (its pipelines cost a few seconds per environment).
+    Scene glass = scene;
+    for (int i = 0; i < 3; ++i) {
+        Material& m = glass.materials[size_t(i)];
+        m.transmission = 0.5f;
+        m.thickness = 0.3f;
+        m.attenuation_distance = 0.1f;
+        m.attenuation_color = glm::vec3(0.0f, 0.5f, 1.0f);
+        if (i == 1) m.dielectric_f0 = 0.0f;
+    }
     TempFile sun("facet_stability_sun.exr"), black("facet_stability_black.exr");
     const Equirect sun_env = test::sun_sky(256, 128, 1e5, 0.5, 20.0, 40.0), black_env = test::uniform_sky(64, 32, 0.0f);
     ASSERT_TRUE(write_hdr_image(sun.path, sun_env.w, sun_env.h, sun_env.rgba));
     ASSERT_TRUE(write_hdr_image(black.path, black_env.w, black_env.h, black_env.rgba));
+    auto check = [&](const Scene& drawn, BrdfModel model, const std::string& env, ShadingMethod method) {
+        std::string first_choice;
+        for (float elevation : {0.5f, 30.0f}) {
+            RenderJob job;
+            job.env = env;
+            job.env_width = 128;
+            job.max_env_width = 256;
+            job.ibl.specular.sample_count = 128;
+            job.ibl.lut.size = 32;
+            job.ibl.lut.sample_count = 256;
+            job.frame.width = 64;
+            job.frame.height = 48;
+            job.frame.brdf = model;
+            job.shading = method;
+            job.orbit = std::array<float, 3>{20.0f, elevation, 9.0f};
+            job.target = glm::vec3(2.5f, 1.25f, 0.0f);
+            job.frame.views = {View::D, View::F, View::G, View::diffuse, View::specular, View::prefiltered,
+                               View::transmission};
+            Light light;
+            light.direction = glm::normalize(glm::vec3(0.3f, -0.2f, -1.0f));
+            light.intensity = 1e3f;
+            job.extra_lights = {light};
+            auto session = RenderSession::create(ctx(), job, drawn);
+            ASSERT_TRUE(session) << session.error().message;
+            auto images = (*session)->render_frame();
+            ASSERT_TRUE(images) << images.error().message;
+            const std::string what = std::string(brdf_model_name(model)) + ", " +
+                                     shading_method_name((*session)->shading().method) + ", " + env + ", elevation " +
+                                     std::to_string(elevation) + (&drawn == &glass ? ", transmissive" : "");
+            auto all_fine = [](const std::vector<float>& v) {
+                for (float x : v)
+                    if (!std::isfinite(x) || x < 0) return false;
+                return true;
+            };
+            EXPECT_TRUE(all_fine(images->hdr)) << what;
+            for (auto& [view, texels] : images->views) EXPECT_TRUE(all_fine(texels)) << view_name(view) << ", " << what;
+            const std::string choice = std::string(shading_method_name((*session)->shading().method)) + ": " +
+                                       (*session)->shading().reason;
+            if (first_choice.empty()) first_choice = choice;
+            EXPECT_EQ(choice, first_choice) << what;
+        }
+    };
     const std::string envs[] = {"builtin:sky", sun.path, FACET_SHARED_DATA_DIR "/env/studio_small_03_1k.hdr", black.path,
                                 "builtin:white"};
-    for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis})
+    for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis}) {
         for (const std::string& env : envs)
             // The automatic choice (predicted per environment) and, by name, lights+dominant
             // under the sun of 1e5 and where there is nothing to extract.
             for (ShadingMethod method : {ShadingMethod::automatic, ShadingMethod::lights_dominant}) {
                 if (method == ShadingMethod::lights_dominant && env != black.path && env != sun.path) continue;
-                std::string first_choice;
-                for (float elevation : {0.5f, 30.0f}) {
-                    RenderJob job;
-                    job.env = env;
-                    job.env_width = 128;
-                    job.max_env_width = 256;
-                    job.ibl.specular.sample_count = 128;
-                    job.ibl.lut.size = 32;
-                    job.ibl.lut.sample_count = 256;
-                    job.frame.width = 64;
-                    job.frame.height = 48;
-                    job.frame.brdf = model;
-                    job.shading = method;
-                    job.orbit = std::array<float, 3>{20.0f, elevation, 9.0f};
-                    job.target = glm::vec3(2.5f, 1.25f, 0.0f);
-                    job.frame.views = {View::D, View::F, View::G, View::diffuse, View::specular, View::prefiltered};
-                    Light light;
-                    light.direction = glm::normalize(glm::vec3(0.3f, -0.2f, -1.0f));
-                    light.intensity = 1e3f;
-                    job.extra_lights = {light};
-                    auto session = RenderSession::create(ctx(), job, scene);
-                    ASSERT_TRUE(session) << session.error().message;
-                    auto images = (*session)->render_frame();
-                    ASSERT_TRUE(images) << images.error().message;
-                    const std::string what = std::string(brdf_model_name(model)) + ", " +
-                                             shading_method_name((*session)->shading().method) + ", " + env +
-                                             ", elevation " + std::to_string(elevation);
-                    auto all_fine = [](const std::vector<float>& v) {
-                        for (float x : v)
-                            if (!std::isfinite(x) || x < 0) return false;
-                        return true;
-                    };
-                    EXPECT_TRUE(all_fine(images->hdr)) << what;
-                    for (auto& [view, texels] : images->views) EXPECT_TRUE(all_fine(texels)) << view_name(view) << ", " << what;
-                    const std::string choice = std::string(shading_method_name((*session)->shading().method)) + ": " +
-                                               (*session)->shading().reason;
-                    if (first_choice.empty()) first_choice = choice;
-                    EXPECT_EQ(choice, first_choice) << what;
-                }
+                check(scene, model, env, method);
             }
+        check(glass, model, sun.path, ShadingMethod::automatic);
+    }
 }
 
 }  // namespace
