@@ -109,7 +109,10 @@ public:
 
     // The forward pass alone into the caller's targets, with the caller's matrices;
     // `settings` gives the lights and the shading options (its size, samples, camera,
-    // skybox, display and views are not used). Linear HDR out: nothing after it.
+    // skybox, display and views are not used). Linear HDR out: nothing after it. Where an
+    // instance transmits (KHR_materials_transmission), the opaque scene is first drawn
+    // without it into a transient mipmapped image of the targets' size (a graphics pass and
+    // one compute pass per mip level), which the transmissive surfaces read.
     Result<ForwardOutputs> add_forward_pass(RenderGraph& graph, const GpuScene& scene, const FrameSettings& settings,
                                             const CameraMatrices& camera, const ForwardTargets& targets,
                                             const std::optional<IblInputs>& ibl, uint32_t frame = 0);
