@@ -185,6 +185,9 @@ Result<Pipeline> Pipeline::compute(Context& context, std::span<const uint32_t> s
     info.stage.module = module.module;
     info.stage.pName = "main";
     info.layout = p.layout_.handle();
+    // Dispatches may start at a workgroup other than 0 (vkCmdDispatchBase: a cube's faces
+    // in passes of their own, ibl/specular.cpp).
+    info.flags = VK_PIPELINE_CREATE_DISPATCH_BASE_BIT;
     VkResult r = take_injected_fault(FaultSite::pipeline);
     if (r == VK_SUCCESS) r = vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline_);
     if (r != VK_SUCCESS) {

@@ -16,6 +16,24 @@ namespace {
 
 constexpr VkImageViewType specular_array_view = cube_array_view;
 
+// The large sampled levels run face by face, a pass each: lavapipe runs one submission at a time,
+// and a viewer's frame queued behind a level's whole cube (0.6-1 s for the first level of a
+// sun sky) waited that long (docs: README "The viewer never stops drawing").
+// Levels of faces under 64^2 take a few milliseconds: one pass for the cube.
+constexpr uint32_t kSmallestSplitFace = 64;
+
+// The passes of a level of face size n: (first face, face count, name) each.
+struct FacePass {
+    uint32_t first, count;
+    std::string name;
+};
+std::vector<FacePass> face_passes(const std::string& level, uint32_t n) {
+    if (n < kSmallestSplitFace) return {{0, 6, level}};
+    std::vector<FacePass> passes;
+    for (uint32_t face = 0; face < 6; ++face) passes.push_back({face, 1, level + " face " + std::to_string(face)});
+    return passes;
+}
+
 }  // namespace
 
 std::vector<float> specular_level_roughness(uint32_t levels) {
@@ -97,18 +115,19 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
             if (!list) return list.error();
             const Params params{list->count, r};
             const BufferHandle texels = list->buffer;
-            graph.add_compute_pass(name, [&](PassBuilder& b) {
-                b.read(texels);
-                current = b.write_storage(current, ImageRange::mip(m));
-            }, [p = *conv, texels, specular, m, n, params](PassContext& pc) {
-                p->bind(pc.cmd());
-                const DescriptorWrite writes[] = {
-                    DescriptorWrite::storage_buffer(pc.buffer(texels)),
-                    DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(m), specular_array_view))};
-                p->push_descriptors(pc.cmd(), writes);
-                p->push_constants(pc.cmd(), params);
-                dispatch_cube(pc, *p, n);
-            });
+            for (const FacePass& f : face_passes(name, n))
+                graph.add_compute_pass(f.name, [&](PassBuilder& b) {
+                    b.read(texels);
+                    current = b.write_storage(current, ImageRange::mip(m));
+                }, [p = *conv, texels, specular, m, n, params, f](PassContext& pc) {
+                    p->bind(pc.cmd());
+                    const DescriptorWrite writes[] = {
+                        DescriptorWrite::storage_buffer(pc.buffer(texels)),
+                        DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(m), specular_array_view))};
+                    p->push_descriptors(pc.cmd(), writes);
+                    p->push_constants(pc.cmd(), params);
+                    dispatch_cube_faces(pc, *p, n, f.first, f.count);
+                });
             continue;
         }
         if (method == SpecularMethod::mips) {
@@ -138,18 +157,19 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
         auto sample = programs.compute("ibl/specular_importance.comp");
         if (!sample) return sample.error();
         const Params params{s.sample_count, r, method == SpecularMethod::filtered ? 1u : 0u, float(env.width)};
-        graph.add_compute_pass(name, [&](PassBuilder& b) {
-            b.sample(environment);
-            current = b.write_storage(current, ImageRange::mip(m));
-        }, [p = *sample, environment, specular, m, n, params, sampler = cube_sampler.handle()](PassContext& pc) {
-            p->bind(pc.cmd());
-            const DescriptorWrite writes[] = {
-                DescriptorWrite::sampled_image(pc.view(environment), sampler),
-                DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(m), specular_array_view))};
-            p->push_descriptors(pc.cmd(), writes);
-            p->push_constants(pc.cmd(), params);
-            dispatch_cube(pc, *p, n);
-        });
+        for (const FacePass& f : face_passes(name, n))
+            graph.add_compute_pass(f.name, [&](PassBuilder& b) {
+                b.sample(environment);
+                current = b.write_storage(current, ImageRange::mip(m));
+            }, [p = *sample, environment, specular, m, n, params, f, sampler = cube_sampler.handle()](PassContext& pc) {
+                p->bind(pc.cmd());
+                const DescriptorWrite writes[] = {
+                    DescriptorWrite::sampled_image(pc.view(environment), sampler),
+                    DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(m), specular_array_view))};
+                p->push_descriptors(pc.cmd(), writes);
+                p->push_constants(pc.cmd(), params);
+                dispatch_cube_faces(pc, *p, n, f.first, f.count);
+            });
     }
     return current;
 }

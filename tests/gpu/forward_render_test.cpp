@@ -534,7 +534,8 @@ TEST_F(ForwardRenderTest, SpecularLevelsBelowTheSceneRoughnessAreNotBaked) {
     auto session = RenderSession::create(ctx(), job, spheres(0.8f));
     ASSERT_TRUE(session) << session.error().message;
     for (const PassTiming& t : (*session)->bake_timings())
-        if (t.name.rfind("specular level", 0) == 0 && t.name.find("texels") == std::string::npos)
+        if (t.name.rfind("specular level", 0) == 0 && t.name.find("texels") == std::string::npos &&
+            (baked.empty() || baked.back() != t.name.substr(0, 16)))  // a level's faces: one entry
             baked.push_back(t.name.substr(0, 16));
     // Roughness >= 0.8 reads levels 4 (0.8) and up along R; the fitted lookups read narrower
     // kernels too (render/specular_lobes.h), down to lowest_lookup_roughness(0.8).
