@@ -17,6 +17,7 @@
 #include <facet/scene/gltf_loader.h>
 #include "support/gltf_files.h"
 #include "support/gpu_test.h"
+#include "support/tiny_session.h"
 
 namespace facet {
 namespace {
@@ -88,21 +89,7 @@ class GltfFeaturesTest : public GpuTest {
 protected:
     GltfTempDir dir{"gltf_features"};
 
-    RenderJob job(const std::string& env) {
-        RenderJob job;
-        job.env = env;
-        job.env_width = 64;
-        job.frame.width = kSize;
-        job.frame.height = kSize;
-        job.frame.samples = 1;
-        job.frame.skybox = false;
-        job.ibl.specular.sample_count = 64;
-        job.ibl.lut.size = 32;
-        job.ibl.lut.sample_count = 256;
-        job.orbit = std::array<float, 3>{0.0f, 0.0f, 3.0f};
-        job.target = glm::vec3(0.0f);
-        return job;
-    }
+    RenderJob job(const std::string& env) { return head_on_job(env, kSize); }
     // Loads `path`, makes every material Lambert-only (metallic 0, no specular lobe: the
     // white furnace then shows albedo exactly), and renders it.
     RenderedImages render(const std::string& path, RenderJob job, bool lambert = true,

@@ -15,6 +15,7 @@
 #include <facet/scene/gltf_loader.h>
 #include "support/gltf_files.h"
 #include "support/gpu_test.h"
+#include "support/tiny_session.h"
 
 namespace facet {
 namespace {
@@ -66,18 +67,9 @@ protected:
     GltfTempDir dir{"transmission"};
 
     RenderJob job() {
-        RenderJob job;
-        job.env = "builtin:white";
-        job.env_width = 64;
-        job.frame.width = kSize;
-        job.frame.height = kSize;
-        job.frame.samples = 1;
-        job.frame.skybox = false;
-        job.ibl.specular.sample_count = 64;
+        RenderJob job = head_on_job("builtin:white", kSize);
         job.ibl.lut.size = 64;
         job.ibl.lut.sample_count = 1024;
-        job.orbit = std::array<float, 3>{0.0f, 0.0f, 3.0f};
-        job.target = glm::vec3(0.0f);
         return job;
     }
     std::vector<float> render(const std::string& name, const std::string& glass_material, RenderJob j,

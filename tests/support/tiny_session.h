@@ -3,6 +3,7 @@
 // built-in spheres with it, at sizes lavapipe gets through in a fraction of a second.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -65,6 +66,24 @@ inline TinyResult run_tiny_session(Context& context, const RenderJob& job = tiny
     out.mean_radiance = sum / (3.0 * images->hdr.size() / 4);
     if (!std::isfinite(out.mean_radiance)) out.error = "non-finite image";
     return out;
+}
+
+// A single-sample size x size frame of the origin seen head-on from (0, 0, 3) (the small
+// glTF files' quads at z = 0 facing +Z), under `env` baked from 64 texels, no skybox.
+inline RenderJob head_on_job(const std::string& env, uint32_t size) {
+    RenderJob job;
+    job.env = env;
+    job.env_width = 64;
+    job.frame.width = size;
+    job.frame.height = size;
+    job.frame.samples = 1;
+    job.frame.skybox = false;
+    job.ibl.specular.sample_count = 64;
+    job.ibl.lut.size = 32;
+    job.ibl.lut.sample_count = 256;
+    job.orbit = std::array<float, 3>{0.0f, 0.0f, 3.0f};
+    job.target = glm::vec3(0.0f);
+    return job;
 }
 
 }  // namespace facet::test
