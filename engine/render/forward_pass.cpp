@@ -292,7 +292,7 @@ ForwardOutputs ForwardRenderer::add_draw_pass(RenderGraph& graph, const std::str
                                               const FrameSettings& s, const CameraMatrices& camera,
                                               const ForwardTargets& targets, const std::optional<IblInputs>& ibl,
                                               std::vector<const Pipeline*> pipelines, uint32_t frame,
-                                              bool opaque_background, ImageHandle background) {
+                                              ImageHandle background) {
     // What the slot's buffers will hold, computed now and written when the pass is recorded.
     FrameData data{};
     data.view_projection = camera.projection * camera.view;
@@ -306,10 +306,11 @@ ForwardOutputs ForwardRenderer::add_draw_pass(RenderGraph& graph, const std::str
     for (const Light& l : s.lights) lights.push_back(light_data(l));
 
     const DrawList list = draw_list(gpu, camera.position());
+    // Instances without a pipeline are not drawn (the transmission background's).
     std::vector<uint32_t> order;
-    for (uint32_t i : list.opaque)
-        if (!opaque_background || in_transmission_background(gpu.scene(), i)) order.push_back(i);
-    if (!opaque_background) order.insert(order.end(), list.blend.begin(), list.blend.end());
+    for (const std::vector<uint32_t>* part : {&list.opaque, &list.blend})
+        for (uint32_t i : *part)
+            if (pipelines[i]) order.push_back(i);
 
     // The execute step is built before the setup step runs: it names the resources by
     // the handles passed in (a view does not depend on the version).
@@ -458,7 +459,7 @@ Result<ForwardOutputs> ForwardRenderer::add_forward_pass(RenderGraph& graph, con
     if (!final_pipelines) return final_pipelines.error();
     auto background = add_transmission_background(graph, gpu, s, camera, color.width, color.height, ibl, frame);
     if (!background) return background.error();
-    return add_draw_pass(graph, "forward", gpu, s, camera, targets, ibl, std::move(*final_pipelines), frame, false,
+    return add_draw_pass(graph, "forward", gpu, s, camera, targets, ibl, std::move(*final_pipelines), frame,
                          *background);
 }
 
@@ -490,7 +491,7 @@ Result<ImageHandle> ForwardRenderer::add_transmission_background(RenderGraph& gr
     targets.depth = graph.create_image("transmission background depth", depth_desc);
     targets.store_depth = false;
     ImageHandle current = add_draw_pass(graph, "transmission background", gpu, s, camera, targets, ibl,
-                                        std::move(*opaque), frame, true).color;
+                                        std::move(*opaque), frame).color;
     const ImageHandle image = targets.color;
     for (uint32_t m = 1; m < desc.mip_levels; ++m) {
         graph.add_compute_pass("transmission background mip " + std::to_string(m), [&](PassBuilder& b) {

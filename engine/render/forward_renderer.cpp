@@ -105,7 +105,7 @@ Result<FrameImages> ForwardRenderer::add_passes(RenderGraph& graph, const GpuSce
     auto background = add_transmission_background(graph, gpu, s, camera, s.width, s.height, ibl, frame);
     if (!background) return background.error();
     const ForwardOutputs drawn = add_draw_pass(graph, "forward", gpu, s, camera, targets, ibl,
-                                               std::move(*final_pipelines), frame, false, *background);
+                                               std::move(*final_pipelines), frame, *background);
     out.hdr = targets.resolve.valid() ? drawn.resolve : drawn.color;
 
     if (s.skybox && ibl) {

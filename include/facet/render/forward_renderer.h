@@ -158,15 +158,13 @@ private:
                                                    bool ibl, const FrameSettings& settings,
                                                    bool opaque_background = false);
     DrawList draw_list(const GpuScene& scene, glm::vec3 camera_position) const;
-    // Adds one graphics pass drawing every instance with `pipelines` (shared by the
-    // forward pass and the views), or with `opaque_background` only the opaque instances
-    // without a transmission; `background`, when valid, is what transmissive surfaces see
-    // behind them (sampled).
+    // Adds one graphics pass drawing every instance that has a pipeline in `pipelines`
+    // (shared by the forward pass, the views and the transmission background); `background`,
+    // when valid, is what transmissive surfaces see behind them (sampled).
     ForwardOutputs add_draw_pass(RenderGraph& graph, const std::string& name, const GpuScene& scene,
                                  const FrameSettings& settings, const CameraMatrices& camera,
                                  const ForwardTargets& targets, const std::optional<IblInputs>& ibl,
-                                 std::vector<const Pipeline*> pipelines, uint32_t frame,
-                                 bool opaque_background = false, ImageHandle background = {});
+                                 std::vector<const Pipeline*> pipelines, uint32_t frame, ImageHandle background = {});
     // KHR_materials_transmission: the opaque scene without the transmissive instances drawn
     // into a mipmapped RGBA16F image of the target's size (premultiplied colour, alpha its
     // coverage); returns it, or an invalid handle where no instance transmits.
