@@ -226,16 +226,18 @@ int run_sweep(const cli::Parsed& a) {
             configs.push_back({"convolve", "texel blocks", s});
             s.method = SpecularMethod::mips;
             configs.push_back({"mips", "environment mips", s});
-            for (uint32_t n : {256u, 1024u}) {
-                s.method = SpecularMethod::automatic;
-                s.sample_count = n;
-                configs.push_back({"automatic", std::to_string(n) + " samples", s});
+            for (uint32_t n : {16u, 64u, 256u}) {
+                s.method = SpecularMethod::hybrid;
+                s.hybrid_sample_count = n;
+                configs.push_back({"hybrid", std::to_string(n) + " samples", s});
             }
+            s = SpecularSettings{};
+            configs.push_back({"automatic", "defaults", s});
             // Sizes: the same methods on a cube half as large (faster, coarser levels).
             const uint32_t half = std::max(1u, e.h / 4);
             s.method = SpecularMethod::automatic;
             s.sample_count = 1024;
-            configs.push_back({"automatic", "1024 samples, cube " + std::to_string(half), s, half});
+            configs.push_back({"automatic", "defaults, cube " + std::to_string(half), s, half});
             s.method = SpecularMethod::filtered;
             configs.push_back({"filtered", "1024 samples, cube " + std::to_string(half), s, half});
             const test::TexelTable table(e);

@@ -27,8 +27,10 @@ cli::Parser make_parser() {
     p.option("--out", "DIR", "output directory (created if missing)")
         .option("--irradiance", "METHOD", "convolve (default), riemann, sh9, blur, lowmip")
         .flag("--sh9-no-window", "sh9: keep the raw coefficients (may ring below 0 on a sun)")
-        .option("--specular", "METHOD", "automatic (default), importance, filtered, convolve, mips")
+        .option("--specular", "METHOD", "automatic (default: hybrid below roughness 0.5, convolve above),\n"
+                                        "                          importance, filtered, convolve, mips, hybrid")
         .option("--samples", "N", "GGX samples per texel for importance/filtered levels (default 1024)")
+        .option("--hybrid-samples", "N", "filtered samples of the clamped environment per hybrid texel (default 128)")
         .option("--size", "N", "cube face size (default: input height / 2)")
         .option("--levels", "N", "specular levels, roughness m/(N-1) (default 6)")
         .option("--irradiance-size", "N", "irradiance face size (default 32)")
@@ -85,6 +87,7 @@ std::optional<BakeOptions> parse_bake_options(int argc, char** argv) {
         o.specular.method = *m;
     }
     if (a.has("--samples")) o.specular.sample_count = positive(a, "--samples", 1 << 20);
+    if (a.has("--hybrid-samples")) o.specular.hybrid_sample_count = positive(a, "--hybrid-samples", 4096);
     if (a.has("--size")) o.cube_size = positive(a, "--size", 8192);
     if (a.has("--levels")) o.specular.levels = positive(a, "--levels", 16);
     if (a.has("--irradiance-size")) o.irradiance.size = positive(a, "--irradiance-size", 1024);

@@ -103,12 +103,12 @@ void draw_panels(ViewerControls& c) {
     c.reload |= path_input("HDR file", c.env);
     int irradiance = int(c.irradiance), specular = int(c.specular);
     const char* irradiance_methods[] = {"convolve", "riemann", "sh9", "blur", "lowmip"};
-    const char* specular_methods[] = {"automatic", "importance", "filtered", "convolve", "mips"};
+    const char* specular_methods[] = {"automatic", "importance", "filtered", "convolve", "mips", "hybrid"};
     if (ImGui::Combo("irradiance", &irradiance, irradiance_methods, 5)) {
         c.irradiance = IrradianceMethod(irradiance);
         c.reload = true;
     }
-    if (ImGui::Combo("specular", &specular, specular_methods, 5)) {
+    if (ImGui::Combo("specular", &specular, specular_methods, 6)) {
         c.specular = SpecularMethod(specular);
         c.reload = true;
     }

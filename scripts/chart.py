@@ -34,7 +34,8 @@ DESCRIPTIONS = {
     "importance": "the thesis' GGX importance sampling of the full-resolution cube",
     "filtered": "GGX importance sampling that reads a mip matched to each sample's solid angle (Krivanek-Colbert)",
     "mips": "the environment's own box-filtered mip chain, one level per roughness",
-    "automatic": "filtered importance sampling for smooth levels, texel-block convolution from roughness 0.3",
+    "hybrid": "filtered importance sampling of the sky clamped at 16x its mean, plus the excess summed exactly",
+    "automatic": "hybrid for smooth levels, texel-block convolution from roughness 0.5",
 }
 STAGE_TITLES = {
     "irradiance": "Diffuse irradiance: error against the brute-force integral",

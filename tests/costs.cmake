@@ -6,13 +6,14 @@ set(FACET_TEST_COSTS
   AccuracyTargets.GltfModelEveryGroupWithinItsTarget 60
   AccuracyTargets.ThesisModelEveryGroupWithinItsTarget 60
   Repetition.HostMemoryStaysFlatOver100Cycles 55
-  Sites/InjectedFault.EveryCallFailsCleanly/OutOfDeviceMemory 50
   stability_test 55
+  Sites/InjectedFault.EveryCallFailsCleanly/OutOfDeviceMemory 50
   transmission_test 40
   render_ground_truth_test 39
   irradiance_test 33
   FacetBench.SweepImageStageMeasuresEveryMethodAgainstTheTruth 30
   Sites/InjectedFault.EveryCallFailsCleanly/DeviceLost 25
+  specular_test 25
   public_errors_test 22
   install.consumer_builds_and_runs 21
   LargeEnvironment.FacetBakeDownsamplesA16kFileWithinItsMemoryBudget 19
@@ -22,7 +23,6 @@ set(FACET_TEST_COSTS
   FacetViewer.ScreenshotMatchesFacetRender 11
   FacetBake.BakesTheBuiltInSky 11
   FacetRender.BadArgumentsExitTwoWithAReason 11
-  specular_test 11
   FacetBench.SweepWritesRowsChartsAndReport 11
   InterruptRender.SigintDuringTheBakeKeepsTheEarlierImageAndARerunMatches 11
   LargeModel.An8kTextureIsDownsampledWhileDecodedKeepingItsMeanAndFeatures 11

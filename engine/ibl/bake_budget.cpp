@@ -93,7 +93,9 @@ Result<Budget> choose_within_budget(Context& context, ProgramCache& programs, co
         auto add = [&](SpecularMethod method, uint32_t samples) {
             SpecularSettings s = base.specular;
             s.method = method;
-            if (samples) s.sample_count = samples;
+            // automatic's sampled levels are hybrid ones: their sample count is hybrid_sample_count.
+            if (samples && method == SpecularMethod::automatic) s.hybrid_sample_count = samples;
+            else if (samples) s.sample_count = samples;
             s.min_roughness = std::max(s.min_roughness, rmin);
             const bool sampled = method == SpecularMethod::filtered || method == SpecularMethod::automatic;
             candidates.push_back({specular_method_name(method), sampled ? std::to_string(samples) + " samples" : "", s});
@@ -101,10 +103,10 @@ Result<Budget> choose_within_budget(Context& context, ProgramCache& programs, co
         // Cheapest first (facet-bench sweep, docs/bench/report.md).
         add(SpecularMethod::mips, 0);
         add(SpecularMethod::filtered, 256);
-        add(SpecularMethod::automatic, 256);
-        add(SpecularMethod::automatic, 1024);
+        add(SpecularMethod::automatic, 64);
+        add(SpecularMethod::automatic, 128);
         add(SpecularMethod::filtered, 1024);
-        add(SpecularMethod::automatic, 4096);
+        add(SpecularMethod::automatic, 512);
         add(SpecularMethod::convolve, 0);
         const test::TexelTable table(e);
         auto chosen = first_meeting<SpecularSettings>(

@@ -50,8 +50,9 @@ Result<BufferHandle> add_output_range_passes(RenderGraph& graph, ProgramCache& p
                     DescriptorWrite::storage_buffer(pc.buffer(ranges))};
                 p->push_descriptors(pc.cmd(), writes);
                 const auto local = p->workgroup_size();
-                vkCmdDispatch(pc.cmd(), group_count(desc.mip_width(m), local[0]), group_count(desc.mip_height(m), local[1]),
-                              desc.array_layers);
+                // Each invocation reads 8 rows (shaders/ibl/output_range.comp).
+                vkCmdDispatch(pc.cmd(), group_count(desc.mip_width(m), local[0]),
+                              group_count(desc.mip_height(m), local[1] * 8), desc.array_layers);
             }
         });
     }

@@ -215,6 +215,9 @@ Result<BakedEnvironment> load_dir(Context& context, const std::string& dir, cons
         s.specular.method = *method;
         s.specular.sample_count = spec.count("sample_count");
         s.specular.automatic_convolve_from = float(spec.number("automatic_convolve_from"));
+        // Written since bake revision 6; older bakes made no hybrid level.
+        if (spec.optional("hybrid_sample_count")) s.specular.hybrid_sample_count = spec.count("hybrid_sample_count");
+        if (spec.optional("excess_factor")) s.specular.excess_factor = float(spec.number("excess_factor"));
         s.specular.min_roughness = float(spec.number("min_roughness"));
         meta.first_specular_level = spec.count("first_level");
         const JsonValue& levels = spec.at("levels");

@@ -91,6 +91,8 @@ std::string bake_json(const BakedEnvironment& b) {
         j.value("method", specular_method_name(s.specular.method))
             .value("sample_count", s.specular.sample_count)
             .value("automatic_convolve_from", double(s.specular.automatic_convolve_from))
+            .value("hybrid_sample_count", s.specular.hybrid_sample_count)
+            .value("excess_factor", double(s.specular.excess_factor))
             .value("min_roughness", double(s.specular.min_roughness))
             .value("first_level", d.first_specular_level)
             .value("alpha", "roughness^2")

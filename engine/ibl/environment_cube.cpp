@@ -29,29 +29,37 @@ ImageDesc environment_cube_desc(uint32_t size, uint32_t mips) {
 
 Result<ImageHandle> add_environment_cube_passes(RenderGraph& graph, ProgramCache& programs,
                                                 const Sampler& equirect_sampler, ImageHandle equirect,
-                                                ImageHandle cube) {
+                                                ImageHandle cube, uint32_t taps, const std::string& name) {
     auto to_cube = programs.compute("ibl/equirect_to_cube.comp");
     if (!to_cube) return to_cube.error();
-    auto downsample = programs.compute("ibl/cube_downsample.comp");
-    if (!downsample) return downsample.error();
-
     const ImageDesc desc = graph.resource(cube).image_desc;
     const VkSampler sampler = equirect_sampler.handle();
     const VkImageViewType array = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
     ImageHandle current;
-    graph.add_compute_pass("equirect to cube", [&](PassBuilder& b) {
+    graph.add_compute_pass(name.empty() ? "equirect to cube" : name, [&](PassBuilder& b) {
         b.sample(equirect, ImageRange::mip(0));
         current = b.write_storage(cube, ImageRange::mip(0));
-    }, [p = *to_cube, equirect, cube, sampler, n = desc.width, array](PassContext& pc) {
+    }, [p = *to_cube, equirect, cube, sampler, n = desc.width, array, taps](PassContext& pc) {
         p->bind(pc.cmd());
         const DescriptorWrite writes[] = {
             DescriptorWrite::sampled_image(pc.view(equirect, ImageRange::mip(0)), sampler),
             DescriptorWrite::storage_image(pc.view(cube, ImageRange::mip(0), array))};
         p->push_descriptors(pc.cmd(), writes);
+        p->push_constants(pc.cmd(), taps);
         dispatch_cube(pc, *p, n);
     });
+    return add_cube_mip_passes(graph, programs, current, name.empty() ? "cube mip " : name + " mip ");
+}
+
+Result<ImageHandle> add_cube_mip_passes(RenderGraph& graph, ProgramCache& programs, ImageHandle cube,
+                                        const std::string& name) {
+    auto downsample = programs.compute("ibl/cube_downsample.comp");
+    if (!downsample) return downsample.error();
+    const ImageDesc desc = graph.resource(cube).image_desc;
+    const VkImageViewType array = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+    ImageHandle current = cube;
     for (uint32_t m = 1; m < desc.mip_levels; ++m) {
-        graph.add_compute_pass("cube mip " + std::to_string(m), [&](PassBuilder& b) {
+        graph.add_compute_pass(name + std::to_string(m), [&](PassBuilder& b) {
             b.read_storage(current, ImageRange::mip(m - 1));
             current = b.write_storage(current, ImageRange::mip(m));
         }, [p = *downsample, cube, m, n = desc.mip_width(m), array](PassContext& pc) {

@@ -2,6 +2,7 @@
 // The environment as a cube map with a full mip chain, built by compute passes:
 // equirect -> level 0, then each level from the one above by solid-angle weighting.
 #include <cstdint>
+#include <string>
 
 #include <facet/core/result.h>
 #include <facet/graph/render_graph.h>
@@ -20,9 +21,15 @@ uint32_t full_mip_count(uint32_t size);
 ImageDesc environment_cube_desc(uint32_t size, uint32_t mips);
 
 // Fills every level of `cube` from `equirect` (sampled with `equirect_sampler`: linear,
-// repeat in u); returns the cube's final version.
+// repeat in u; taps x taps bilinear samples per texel); returns the cube's final version.
+// Passes named `name` and `name` mip M (default "equirect to cube", "cube mip M").
 Result<ImageHandle> add_environment_cube_passes(RenderGraph& graph, ProgramCache& programs,
                                                 const Sampler& equirect_sampler, ImageHandle equirect,
-                                                ImageHandle cube);
+                                                ImageHandle cube, uint32_t taps = 4, const std::string& name = "");
+
+// Levels 1 .. of `cube` (a version whose level 0 is written), each from the one above
+// (shaders/ibl/cube_downsample.comp); passes named `name` + level. Returns the final version.
+Result<ImageHandle> add_cube_mip_passes(RenderGraph& graph, ProgramCache& programs, ImageHandle cube,
+                                        const std::string& name);
 
 }  // namespace facet

@@ -220,12 +220,13 @@ Result<IblImages> IblBake::add_passes(RenderGraph& graph, const EnvironmentSourc
             SpecularSettings smooth = s.specular;
             smooth.end_level = split.level;
             auto written = add_specular_passes(graph, programs_, *cube_sampler_, whole->cube, specular, smooth,
-                                               whole->equirect);
+                                               whole->equirect, equirect_sampler_.get());
             if (!written) return written.error();
             specular = *written;
             rough.first_level = std::max(rough.first_level, split.level);
         }
-        auto written = add_specular_passes(graph, programs_, *cube_sampler_, out.cube, specular, rough, out.equirect);
+        auto written = add_specular_passes(graph, programs_, *cube_sampler_, out.cube, specular, rough, out.equirect,
+                                             equirect_sampler_.get());
         if (!written) return written.error();
         out.specular = *written;
     }

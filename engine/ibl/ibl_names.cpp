@@ -33,13 +33,14 @@ const char* specular_method_name(SpecularMethod method) {
         case SpecularMethod::filtered: return "filtered";
         case SpecularMethod::convolve: return "convolve";
         case SpecularMethod::mips: return "mips";
+        case SpecularMethod::hybrid: return "hybrid";
     }
     return "?";
 }
 
 std::optional<SpecularMethod> parse_specular_method(const std::string& name) {
     for (auto m : {SpecularMethod::automatic, SpecularMethod::importance, SpecularMethod::filtered,
-                   SpecularMethod::convolve, SpecularMethod::mips})
+                   SpecularMethod::convolve, SpecularMethod::mips, SpecularMethod::hybrid})
         if (name == specular_method_name(m)) return m;
     return std::nullopt;
 }

@@ -45,6 +45,7 @@ std::string documented_bound(IrradianceMethod method) {
 std::string documented_bound(SpecularMethod method, uint32_t sample_count) {
     switch (method) {
     case SpecularMethod::automatic:
+    case SpecularMethod::hybrid:
     case SpecularMethod::convolve: return "within 5% everywhere";
     case SpecularMethod::filtered:
         return sample_count >= 1024 ? "within 5% everywhere" : "within 5% without very bright lights";

@@ -9,6 +9,10 @@ layout(binding = 0, rgba32f) uniform readonly image2DArray level;
 layout(binding = 1, std430) buffer Range { uint values[]; } range;
 layout(push_constant) uniform Params { uint slot; } params;
 
+// Rows per invocation: the reduction below (barriers, one atomic) is paid once per
+// 8 x 64 texels, not per 8 x 8 (add_output_range_passes dispatches accordingly).
+const int ROWS = 8;
+
 shared float group_peak[64];
 shared uint group_bad[64];
 
@@ -17,12 +21,17 @@ void main() {
     ivec3 size = imageSize(level);
     float peak = 0.0;
     uint bad = 0u;
-    if (id.x < size.x && id.y < size.y && id.z < size.z) {
-        vec4 v = imageLoad(level, id);
-        for (int c = 0; c < 4; ++c) {
-            bool sound = !isnan(v[c]) && !isinf(v[c]) && v[c] >= 0.0;
-            bad += sound ? 0u : 1u;
-            if (sound) peak = max(peak, v[c]);
+    if (id.x < size.x && id.z < size.z) {
+        int first = (id.y / 8) * 8 * ROWS + id.y % 8;  // rows first, first + 8, ... of the group's band
+        for (int r = 0; r < ROWS; ++r) {
+            int y = first + 8 * r;
+            if (y >= size.y) break;
+            vec4 v = imageLoad(level, ivec3(id.x, y, id.z));
+            for (int c = 0; c < 4; ++c) {
+                bool sound = !isnan(v[c]) && !isinf(v[c]) && v[c] >= 0.0;
+                bad += sound ? 0u : 1u;
+                if (sound) peak = max(peak, v[c]);
+            }
         }
     }
     // One atomic per workgroup, not per texel.

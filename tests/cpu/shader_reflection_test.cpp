@@ -66,9 +66,9 @@ TEST(ShaderReflection, ShProjectionReadsAndWritesBuffersIn64Wide1DGroups) {
 }
 
 TEST(ShaderReflection, ShaderWithoutPushConstantsHasNone) {
-    const ShaderReflection r = reflect(ShaderStage::compute, "ibl/equirect_to_cube.comp");
-    expect_bindings(r, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}, {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
-                    "equirect_to_cube");
+    const ShaderReflection r = reflect(ShaderStage::compute, "ibl/cube_downsample.comp");
+    expect_bindings(r, {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
+                    "cube_downsample");
     EXPECT_EQ(r.push_constant_bytes, 0u);
 }
 

@@ -180,7 +180,7 @@ TEST_F(StabilityTest, SpecularMethodsNeverFailSilently) {
     };
     std::vector<Method> methods;
     for (SpecularMethod m : {SpecularMethod::automatic, SpecularMethod::importance, SpecularMethod::filtered,
-                             SpecularMethod::convolve, SpecularMethod::mips}) {
+                             SpecularMethod::convolve, SpecularMethod::mips, SpecularMethod::hybrid}) {
         SpecularSettings s;
         s.method = m;
         s.levels = 4;
@@ -227,8 +227,8 @@ TEST_F(StabilityTest, SpecularMethodsNeverFailSilently) {
                 EXPECT_FALSE(warnings.empty()) << in.name << ", " << m.name << ": error " << worst << " above the bound "
                                                << m.bound << " without a warning";
             // Fireflies, measured and remedied: plain importance sampling with 256 samples
-            // under the half-degree sun is off by more than half; the default (filtered
-            // for smooth levels, texel-block convolution from roughness 0.3) is within 1%.
+            // under the half-degree sun is off by more than half; the default (hybrid for
+            // smooth levels, texel-block convolution from roughness 0.5) is within 1%.
             if (in.name.rfind("sun", 0) == 0) {
                 if (m.settings.method == SpecularMethod::importance) EXPECT_GT(worst, 0.5);
                 if (m.settings.method == SpecularMethod::automatic) EXPECT_LT(worst, 0.01);

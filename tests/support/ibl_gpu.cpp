@@ -15,6 +15,12 @@
 
 namespace facet::test {
 
+namespace {
+const Sampler* current_equirect_sampler = nullptr;
+}
+
+const Sampler* run_ibl_equirect_sampler() { return current_equirect_sampler; }
+
 CubeLevels run_ibl(Context& context, const Equirect& e, const AddPasses& passes) {
     ShaderCompiler compiler;
     ProgramCache programs(context, compiler);
@@ -37,7 +43,9 @@ CubeLevels run_ibl(Context& context, const Equirect& e, const AddPasses& passes)
     auto cube = g.create_image("environment cube", environment_cube_desc(size, full_mip_count(size)));
     auto cube_out = add_environment_cube_passes(g, programs, equirect_sampler, equirect, cube);
     EXPECT_TRUE(cube_out) << (cube_out ? "" : cube_out.error().message);
+    current_equirect_sampler = &equirect_sampler;
     ImageHandle result = passes ? passes(g, programs, cube_sampler, *cube_out, equirect) : *cube_out;
+    current_equirect_sampler = nullptr;
     g.export_image(result, {VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                             VK_ACCESS_2_TRANSFER_READ_BIT});
     CompiledGraph compiled = g.compile();
