@@ -202,7 +202,7 @@ Result<BufferHandle> excess_list(RenderGraph& graph, ProgramCache& programs, Exc
 
 // The hybrid method's filtered samples for one roughness (what specular_importance.comp
 // computes per sample, made once): Hammersley points, h ~ D(h) (n.h), l = reflect(-n, h)
-// in the tangent frame of n, and the lod 0.5 log2(Omega_s / Omega_p) + 1 (Krivanek and
+// in the tangent frame of n, and the lod 0.5 log2(Omega_s / Omega_p) (Krivanek and
 // Colbert 2008); samples below the horizon are left out. Returns the sum of their n.l.
 double hybrid_samples(uint32_t count, float roughness, uint32_t source_size, std::vector<float>& out) {
     const double alpha = std::max(double(roughness) * roughness, 1e-4), a2 = alpha * alpha;
