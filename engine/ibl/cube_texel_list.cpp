@@ -1,5 +1,7 @@
 #include "ibl/cube_texel_list.h"
 
+#include <cmath>
+
 #include <facet/graph/graph_run.h>
 #include <facet/shader/program_cache.h>
 
@@ -24,6 +26,9 @@ Result<CubeTexelList> add_cube_texel_list_pass(RenderGraph& graph, ProgramCache&
     const uint32_t face = env.mip_width(level);
     CubeTexelList list;
     list.count = 6 * face * face;
+    // Texels are widest at a face's centre: corners at +-1/face from it in the tangent plane.
+    const double rho = std::atan(std::sqrt(2.0) / face), child = std::atan(std::sqrt(2.0) / env.width);
+    list.max_spread = std::sqrt(2.0) * rho + child;
     auto texels = graph.create_buffer(name, {VkDeviceSize(list.count) * 32});
     graph.add_compute_pass(name, [&](PassBuilder& b) {
         b.read_storage(environment, ImageRange::mip(0));
@@ -50,6 +55,9 @@ Result<CubeTexelList> add_equirect_texel_list_pass(RenderGraph& graph, ProgramCa
     const uint32_t bx = (d.width + block - 1) / block, by = (d.height + block - 1) / block;
     CubeTexelList list;
     list.count = bx * by;
+    // Blocks are widest at the equator: block x pi / height by block x 2 pi / width.
+    const double pi = 3.14159265358979, texel = 0.5 * std::hypot(pi / d.height, 2 * pi / d.width);
+    list.max_spread = std::sqrt(2.0) * std::min(block * texel, pi) + texel;
     auto texels = graph.create_buffer(name, {VkDeviceSize(list.count) * 32});
     graph.add_compute_pass(name, [&](PassBuilder& b) {
         b.read_storage(equirect, ImageRange::mip(0));

@@ -17,6 +17,10 @@ class ProgramCache;
 struct CubeTexelList {
     BufferHandle buffer;  // 2 x vec4 per entry
     uint32_t count = 0;   // 6 x face^2
+    // An upper bound on any entry's cap radius (radians): the block's half-diagonal rho
+    // widened to sqrt(2) rho plus a child's own (a cap's mean resultant length over a set
+    // of radius rho is at least cos(rho) times its children's).
+    double max_spread = 3.14159265358979;
 };
 
 // Lists the texels of `level` of `environment` (a cube with its mip chain).

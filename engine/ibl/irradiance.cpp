@@ -1,6 +1,7 @@
 #include <facet/ibl/irradiance.h>
 
 #include <cmath>
+#include <vector>
 
 #include <facet/gpu/resources.h>
 #include "ibl/cube_texel_list.h"
@@ -12,6 +13,10 @@ namespace facet {
 namespace {
 
 constexpr VkImageViewType array_view = cube_array_view;
+
+// Caps up to this radius (radians) are taken as flat disks where a horizon cuts them
+// (shaders/ibl/irradiance_convolve.comp): within 6e-4 of the exact clipped cosine.
+constexpr double kNarrowCapSpread = 0.2;
 
 // convolve and blur: list the texels of a small level, then convolve with the list.
 // The list to convolve: the equirect's texels when given and fine enough that each
@@ -32,11 +37,15 @@ Result<ImageHandle> add_texel_convolution(RenderGraph& graph, ProgramCache& prog
         uint32_t texel_count, gaussian;
         float sigma;
     };
-    auto convolve = programs.compute("ibl/irradiance_convolve.comp");
-    if (!convolve) return convolve.error();
     auto list = texel_list(graph, programs, environment, equirect, s, "irradiance texel list");
     if (!list) return list.error();
     const bool blur = s.method == IrradianceMethod::blur;
+    // Narrow caps (every list but a tiny input's) cross a horizon as flat disks: lavapipe
+    // pays for the exact form at every entry, whichever normal needs it.
+    std::vector<ShaderDefine> defines;
+    if (!blur && list->max_spread < kNarrowCapSpread) defines.push_back({"FACET_NARROW_CAPS", "1"});
+    auto convolve = programs.compute("ibl/irradiance_convolve.comp", defines);
+    if (!convolve) return convolve.error();
     const Params params{list->count, blur ? 1u : 0u, s.blur_sigma};
     ImageHandle written;
     graph.add_compute_pass(blur ? "irradiance blur" : "irradiance convolve", [&](PassBuilder& b) {

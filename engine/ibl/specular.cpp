@@ -54,8 +54,11 @@ uint32_t excess_block(double texel_angle, float roughness) {
     return block;
 }
 
+double hybrid_samples(uint32_t count, float roughness, uint32_t source_size, std::vector<float>& out);
+
 struct ExcessSplit {
     ImageHandle residual;
+    uint32_t residual_size = 0;    // its face size (the environment's, or half of it)
     BufferHandle blocks;           // the finest grid: 2 vec4 per block
     uint32_t grid_x = 0, grid_y = 0;  // its blocks per row and column (the input's; 0: the cube's)
     uint32_t block = 1;            // its block size in texels
@@ -73,7 +76,23 @@ Result<ExcessSplit> add_excess_split(RenderGraph& graph, ProgramCache& programs,
         float factor;
     };
     ExcessSplit out;
-    ImageHandle residual = graph.create_image("specular residual", env);
+    out.residual_size = env.width;
+    if (equirect.valid() && equirect_sampler) {
+        // The residual at half the face size when no sample of the smoothest hybrid level
+        // reads the full-size level (lod >= 1 everywhere: at 128 samples from roughness
+        // about 0.15 up); half the texels to resample and a smaller mip chain to read.
+        std::vector<float> table;
+        hybrid_samples(s.hybrid_sample_count, smallest_roughness, env.width, table);
+        float lowest = 1e30f;
+        for (size_t i = 3; i < table.size(); i += 4) lowest = std::min(lowest, table[i]);
+        if (lowest >= 1.0f && env.width >= 2 && env.mip_levels >= 2) out.residual_size = env.width / 2;
+    }
+    ImageDesc residual_desc = env;
+    if (out.residual_size != env.width) {
+        residual_desc.width = residual_desc.height = out.residual_size;
+        residual_desc.mip_levels = env.mip_levels - 1;
+    }
+    ImageHandle residual = graph.create_image("specular residual", residual_desc);
     if (equirect.valid() && equirect_sampler) {
         // Split the input itself, then resample the residual to a cube.
         auto split = programs.compute("ibl/specular_excess_equirect.comp");
@@ -369,7 +388,7 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
             auto hybrid = programs.compute("ibl/specular_hybrid.comp");
             if (!hybrid) return hybrid.error();
             std::vector<float> table;
-            const double sample_weight = hybrid_samples(s.hybrid_sample_count, r, env.width, table);
+            const double sample_weight = hybrid_samples(s.hybrid_sample_count, r, split->residual_size, table);
             const Params params{uint32_t(table.size() / 4), r, float(1.0 / sample_weight),
                                 float(1.0 / specular_lobe_weight(r)), kMostExcessEntries};
             BufferHandle samples = graph.create_buffer(name + " samples", {VkDeviceSize(table.size() * sizeof(float))});

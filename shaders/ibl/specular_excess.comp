@@ -20,16 +20,14 @@ layout(push_constant) uniform Params {
     float factor;  // T = factor x mean luminance
 } params;
 
+#include "ibl/excess_threshold.glsl"
+
 void main() {
     uint n0 = uint(imageSize(level0).x);
     uint n = max(n0 / params.block, 1u);
     uvec3 id = gl_GlobalInvocationID;
+    float threshold = excess_threshold(params.factor);
     if (id.x >= n || id.y >= n) return;
-    float mean = 0.0;
-    for (int f = 0; f < 6; ++f) mean += facet_luminance(imageLoad(top, ivec3(0, 0, f)).rgb);
-    mean /= 6.0;
-    // A black environment has no excess; nor has one whose mean is not a finite number.
-    float threshold = mean > 0.0 && !isinf(mean) ? params.factor * mean : 3.4e38;
     vec3 excess = vec3(0.0);
     vec3 weighted_direction = vec3(0.0);
     for (uint j = 0u; j < params.block; ++j) {

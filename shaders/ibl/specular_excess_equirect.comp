@@ -19,15 +19,14 @@ layout(push_constant) uniform Params {
     float factor;
 } params;
 
+#include "ibl/excess_threshold.glsl"
+
 void main() {
     ivec2 size = imageSize(equirect);
     uvec2 counts = (uvec2(size) + params.block - 1u) / params.block;
     uvec2 id = gl_GlobalInvocationID.xy;
+    float threshold = excess_threshold(params.factor);
     if (any(greaterThanEqual(id, counts))) return;
-    float mean = 0.0;
-    for (int f = 0; f < 6; ++f) mean += facet_luminance(imageLoad(top, ivec3(0, 0, f)).rgb);
-    mean /= 6.0;
-    float threshold = mean > 0.0 && !isinf(mean) ? params.factor * mean : 3.4e38;
     vec3 excess = vec3(0.0);
     vec3 weighted_direction = vec3(0.0);
     uvec2 end = min((id + 1u) * params.block, uvec2(size));
