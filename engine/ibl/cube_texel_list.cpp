@@ -1,7 +1,9 @@
 #include "ibl/cube_texel_list.h"
 
+#include <algorithm>
 #include <cmath>
 
+#include <facet/core/shared_constants.h>
 #include <facet/graph/graph_run.h>
 #include <facet/shader/program_cache.h>
 
@@ -56,7 +58,7 @@ Result<CubeTexelList> add_equirect_texel_list_pass(RenderGraph& graph, ProgramCa
     CubeTexelList list;
     list.count = bx * by;
     // Blocks are widest at the equator: block x pi / height by block x 2 pi / width.
-    const double pi = 3.14159265358979, texel = 0.5 * std::hypot(pi / d.height, 2 * pi / d.width);
+    const double texel = 0.5 * std::hypot(pi / d.height, 2 * pi / d.width);
     list.max_spread = std::sqrt(2.0) * std::min(block * texel, pi) + texel;
     auto texels = graph.create_buffer(name, {VkDeviceSize(list.count) * 32});
     graph.add_compute_pass(name, [&](PassBuilder& b) {

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include <facet/core/result.h>
+#include <facet/core/shared_constants.h>
 #include <facet/graph/render_graph.h>
 
 namespace facet {
@@ -20,7 +21,7 @@ struct CubeTexelList {
     // An upper bound on any entry's cap radius (radians): the block's half-diagonal rho
     // widened to sqrt(2) rho plus a child's own (a cap's mean resultant length over a set
     // of radius rho is at least cos(rho) times its children's).
-    double max_spread = 3.14159265358979;
+    double max_spread = pi;
 };
 
 // Lists the texels of `level` of `environment` (a cube with its mip chain).

@@ -26,8 +26,8 @@ void main() {
     uint n0 = uint(imageSize(level0).x);
     uint n = max(n0 / params.block, 1u);
     uvec3 id = gl_GlobalInvocationID;
-    float threshold = excess_threshold(params.factor);
     if (id.x >= n || id.y >= n) return;
+    float threshold = excess_threshold(params.factor);
     vec3 excess = vec3(0.0);
     vec3 weighted_direction = vec3(0.0);
     for (uint j = 0u; j < params.block; ++j) {

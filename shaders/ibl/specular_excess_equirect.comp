@@ -25,8 +25,8 @@ void main() {
     ivec2 size = imageSize(equirect);
     uvec2 counts = (uvec2(size) + params.block - 1u) / params.block;
     uvec2 id = gl_GlobalInvocationID.xy;
-    float threshold = excess_threshold(params.factor);
     if (any(greaterThanEqual(id, counts))) return;
+    float threshold = excess_threshold(params.factor);
     vec3 excess = vec3(0.0);
     vec3 weighted_direction = vec3(0.0);
     uvec2 end = min((id + 1u) * params.block, uvec2(size));
