@@ -4,6 +4,7 @@
 // no output passes through the host. Outputs that fit RGBA16F are converted on the GPU.
 #include <facet/ibl/baked_environment.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -48,6 +49,18 @@ struct Outputs {
     std::vector<PassTiming> timings;
 };
 
+// The largest sound value and the count of NaN, Inf and negative values, as
+// shaders/ibl/output_range.comp finds them on the GPU.
+OutputRange host_range(const std::vector<float>& texels) {
+    OutputRange r;
+    for (float v : texels) {
+        const bool sound = std::isfinite(v) && v >= 0.0f;
+        r.bad += sound ? 0 : 1;
+        if (sound) r.peak = std::max(r.peak, v);
+    }
+    return r;
+}
+
 Outputs run_bake_graph(Context& context, ProgramCache& programs, const EnvironmentSource& source,
                        const BakeSettings& settings, const SpecularSplit& split, const BakeCallbacks& cb,
                        BakeMetadata& meta) {
@@ -86,14 +99,19 @@ Outputs run_bake_graph(Context& context, ProgramCache& programs, const Environme
     // the files are the same from run to run.
     if (images.specular.valid() && meta.first_specular_level > 0)
         images.specular = add_clear_levels_pass(graph, images.specular, meta.first_specular_level);
+    // The outputs' ranges are checked on the GPU; an uploaded environment's texels on the
+    // host instead, where they are (one pass over memory against a pass of ~5 ms on lavapipe).
+    const bool uploaded = !source.sky;
+    ImageHandle* const outputs[] = {uploaded ? nullptr : &images.equirect, &images.cube, &images.specular,
+                                    &images.irradiance, &images.lut};
     std::vector<CheckedOutput> checked;
-    for (ImageHandle* h : {&images.equirect, &images.cube, &images.specular, &images.irradiance, &images.lut})
-        if (h->valid()) checked.push_back({*h, h == &images.specular ? meta.first_specular_level : 0});
+    for (ImageHandle* h : outputs)
+        if (h && h->valid()) checked.push_back({*h, h == &images.specular ? meta.first_specular_level : 0});
     const BufferHandle ranges = check(add_output_range_passes(graph, programs, checked));
     {
         size_t i = 0;
-        for (ImageHandle* h : {&images.equirect, &images.cube, &images.specular, &images.irradiance, &images.lut})
-            if (h->valid()) *h = checked[i++].image;
+        for (ImageHandle* h : outputs)
+            if (h && h->valid()) *h = checked[i++].image;
     }
     for (ImageHandle h : {images.equirect, images.cube, images.irradiance, images.specular, images.lut, preview})
         if (h.valid()) graph.export_image(h, kKept);
@@ -114,6 +132,7 @@ Outputs run_bake_graph(Context& context, ProgramCache& programs, const Environme
     Outputs r;
     r.timings = run.timings();
     r.ranges = read_output_ranges(context, *run.transient_buffer(ranges), checked.size());
+    if (uploaded) r.ranges.insert(r.ranges.begin(), host_range(source.image.rgba));
     auto take = [&](ImageHandle h) { return h.valid() ? run.detach_image(h) : Image{}; };
     r.environment = take(images.equirect);
     r.cube = take(images.cube);

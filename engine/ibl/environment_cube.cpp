@@ -29,25 +29,37 @@ ImageDesc environment_cube_desc(uint32_t size, uint32_t mips) {
 
 Result<ImageHandle> add_environment_cube_passes(RenderGraph& graph, ProgramCache& programs,
                                                 const Sampler& equirect_sampler, ImageHandle equirect,
-                                                ImageHandle cube, uint32_t taps, const std::string& name) {
-    auto to_cube = programs.compute("ibl/equirect_to_cube.comp");
+                                                ImageHandle cube, uint32_t taps, const std::string& name,
+                                                ImageHandle* mirror) {
+    const bool with_mirror = mirror && mirror->valid();
+    std::vector<ShaderDefine> defines;
+    if (with_mirror) defines.push_back({"FACET_MIRROR", "1"});
+    auto to_cube = programs.compute("ibl/equirect_to_cube.comp", defines);
     if (!to_cube) return to_cube.error();
     const ImageDesc desc = graph.resource(cube).image_desc;
+    if (with_mirror) {
+        const ImageDesc& m = graph.resource(*mirror).image_desc;
+        if (!m.cube || m.width != desc.width || m.format != desc.format)
+            return Error{"equirect to cube: the mirror image must be a cube of the same face size and format"};
+    }
     const VkSampler sampler = equirect_sampler.handle();
     const VkImageViewType array = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
-    ImageHandle current;
+    ImageHandle current, mirror_in = with_mirror ? *mirror : ImageHandle{}, mirror_out;
     graph.add_compute_pass(name.empty() ? "equirect to cube" : name, [&](PassBuilder& b) {
         b.sample(equirect, ImageRange::mip(0));
         current = b.write_storage(cube, ImageRange::mip(0));
-    }, [p = *to_cube, equirect, cube, sampler, n = desc.width, array, taps](PassContext& pc) {
+        if (with_mirror) mirror_out = b.write_storage(mirror_in, ImageRange::mip(0));
+    }, [p = *to_cube, equirect, cube, mirror_in, with_mirror, sampler, n = desc.width, array, taps](PassContext& pc) {
         p->bind(pc.cmd());
-        const DescriptorWrite writes[] = {
+        std::vector<DescriptorWrite> writes = {
             DescriptorWrite::sampled_image(pc.view(equirect, ImageRange::mip(0)), sampler),
             DescriptorWrite::storage_image(pc.view(cube, ImageRange::mip(0), array))};
+        if (with_mirror) writes.push_back(DescriptorWrite::storage_image(pc.view(mirror_in, ImageRange::mip(0), array)));
         p->push_descriptors(pc.cmd(), writes);
         p->push_constants(pc.cmd(), taps);
         dispatch_cube(pc, *p, n);
     });
+    if (with_mirror) *mirror = mirror_out;
     return add_cube_mip_passes(graph, programs, current, name.empty() ? "cube mip " : name + " mip ");
 }
 

@@ -23,9 +23,12 @@ ImageDesc environment_cube_desc(uint32_t size, uint32_t mips);
 // Fills every level of `cube` from `equirect` (sampled with `equirect_sampler`: linear,
 // repeat in u; taps x taps bilinear samples per texel); returns the cube's final version.
 // Passes named `name` and `name` mip M (default "equirect to cube", "cube mip M").
+// With `mirror` (a valid cube of the same face size and format) level 0 is written there
+// too, and *mirror becomes its written version: specular level 0 without a copy pass.
 Result<ImageHandle> add_environment_cube_passes(RenderGraph& graph, ProgramCache& programs,
                                                 const Sampler& equirect_sampler, ImageHandle equirect,
-                                                ImageHandle cube, uint32_t taps = 4, const std::string& name = "");
+                                                ImageHandle cube, uint32_t taps = 4, const std::string& name = "",
+                                                ImageHandle* mirror = nullptr);
 
 // Levels 1 .. of `cube` (a version whose level 0 is written), each from the one above
 // (shaders/ibl/cube_downsample.comp); passes named `name` + level. Returns the final version.

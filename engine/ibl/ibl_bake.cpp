@@ -136,7 +136,7 @@ Result<ImageHandle> add_texel_upload(RenderGraph& graph, Context& context, std::
 Result<Uploaded> add_environment(RenderGraph& graph, Context& context, ProgramCache& programs,
                                  const Sampler& equirect_sampler, const EnvironmentSource& source, uint32_t cube_size,
                                  std::unique_ptr<Buffer>& staging, const std::string& prefix,
-                                 ImageHandle cube_target = {}) {
+                                 ImageHandle cube_target = {}, ImageHandle* mirror = nullptr) {
     Uploaded out;
     ImageDesc equirect_desc;
     equirect_desc.width = source.width;
@@ -155,7 +155,8 @@ Result<Uploaded> add_environment(RenderGraph& graph, Context& context, ProgramCa
         graph, programs, equirect_sampler, out.equirect,
         cube_target.valid() ? cube_target
                             : graph.create_image(prefix + "environment cube",
-                                                 environment_cube_desc(cube_size, full_mip_count(cube_size))));
+                                                 environment_cube_desc(cube_size, full_mip_count(cube_size))),
+        4, "", mirror);
     if (!cube) return cube.error();
     out.cube = *cube;
     return out;
@@ -193,8 +194,19 @@ Result<IblImages> IblBake::add_passes(RenderGraph& graph, const EnvironmentSourc
     auto cube_target = target_or_new(graph, targets.cube, "environment cube",
                                      environment_cube_desc(s.cube_size, full_mip_count(s.cube_size)));
     if (!cube_target) return cube_target.error();
+    // Specular level 0 (a mirror) is the environment's level 0: the pass that makes the
+    // latter writes it too, for whichever environment the smooth levels come from.
+    const bool extracted = split.whole && split.level > 0;
+    ImageHandle specular;
+    bool level0_written = false;
+    if (s.want_specular) {
+        auto target = target_or_new(graph, targets.specular, "specular", environment_cube_desc(s.cube_size, s.specular.levels));
+        if (!target) return target.error();
+        specular = *target;
+        level0_written = s.specular.levels > 0 && first_needed_specular_level(s.specular) == 0;
+    }
     auto main = add_environment(graph, context_, programs_, *equirect_sampler_, source, s.cube_size, staging_, "",
-                                *cube_target);
+                                *cube_target, level0_written && !extracted ? &specular : nullptr);
     if (!main) return main.error();
     out.equirect = main->equirect;
     out.cube = main->cube;
@@ -207,26 +219,23 @@ Result<IblImages> IblBake::add_passes(RenderGraph& graph, const EnvironmentSourc
         out.irradiance = *irradiance;
     }
     if (s.want_specular) {
-        auto target = target_or_new(graph, targets.specular, "specular", environment_cube_desc(s.cube_size, s.specular.levels));
-        if (!target) return target.error();
-        ImageHandle specular = *target;
         SpecularSettings rough = s.specular;
-        if (split.whole && split.level > 0) {
+        if (extracted) {
             if (split.whole->width != source.width || split.whole->height != source.height)
                 return Error{"light extraction: the whole environment and the map without lights differ in size"};
             auto whole = add_environment(graph, context_, programs_, *equirect_sampler_, *split.whole, s.cube_size,
-                                         whole_staging_, "whole ");
+                                         whole_staging_, "whole ", {}, level0_written ? &specular : nullptr);
             if (!whole) return whole.error();
             SpecularSettings smooth = s.specular;
             smooth.end_level = split.level;
             auto written = add_specular_passes(graph, programs_, *cube_sampler_, whole->cube, specular, smooth,
-                                               whole->equirect, equirect_sampler_.get());
+                                               whole->equirect, equirect_sampler_.get(), level0_written);
             if (!written) return written.error();
             specular = *written;
             rough.first_level = std::max(rough.first_level, split.level);
         }
         auto written = add_specular_passes(graph, programs_, *cube_sampler_, out.cube, specular, rough, out.equirect,
-                                             equirect_sampler_.get());
+                                           equirect_sampler_.get(), level0_written && !extracted);
         if (!written) return written.error();
         out.specular = *written;
     }

@@ -296,7 +296,8 @@ uint32_t first_needed_specular_level(const SpecularSettings& settings) {
 
 Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& programs, const Sampler& cube_sampler,
                                         ImageHandle environment, ImageHandle specular, const SpecularSettings& s,
-                                        ImageHandle equirect, const Sampler* equirect_sampler) {
+                                        ImageHandle equirect, const Sampler* equirect_sampler,
+                                        bool level0_written) {
     const ImageDesc env = graph.resource(environment).image_desc;
     const ImageDesc out = graph.resource(specular).image_desc;
     if (!out.cube || out.width != env.width || out.mip_levels != s.levels)
@@ -316,7 +317,7 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
     ImageHandle current = specular;
     const uint32_t first = first_needed_specular_level(s);
     const uint32_t end = s.end_level ? std::min(s.end_level, s.levels) : s.levels;
-    if (first == 0 && end > 0) {
+    if (first == 0 && end > 0 && !level0_written) {
         graph.add_compute_pass("specular level 0 (copy)", [&](PassBuilder& b) {
             b.read_storage(environment, ImageRange::mip(0));
             current = b.write_storage(specular, ImageRange::mip(0));

@@ -1,4 +1,8 @@
 #version 460
+#ifdef FACET_SUBGROUP_REDUCE
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
+#endif
 // The largest value and the number of NaN, Inf and negative values of one level of a
 // bake's output, accumulated into range.values[2 * slot] (the largest finite value's
 // bits: non-negative floats order like their bits) and [2 * slot + 1] (the count).
@@ -9,12 +13,14 @@ layout(binding = 0, rgba32f) uniform readonly image2DArray level;
 layout(binding = 1, std430) buffer Range { uint values[]; } range;
 layout(push_constant) uniform Params { uint slot; } params;
 
-// Rows per invocation: the reduction below (barriers, one atomic) is paid once per
-// 8 x 64 texels, not per 8 x 8 (add_output_range_passes dispatches accordingly).
+// Rows per invocation: the reduction below (and its atomics) is paid once per 8 rows of
+// texels, not per row (add_output_range_passes dispatches accordingly).
 const int ROWS = 8;
 
+#ifndef FACET_SUBGROUP_REDUCE
 shared float group_peak[64];
 shared uint group_bad[64];
+#endif
 
 void main() {
     ivec3 id = ivec3(gl_GlobalInvocationID);
@@ -34,6 +40,15 @@ void main() {
             }
         }
     }
+#ifdef FACET_SUBGROUP_REDUCE
+    // One atomic per subgroup, not per texel (every invocation gets here: no early return).
+    float subgroup_peak = subgroupMax(peak);
+    uint subgroup_bad = subgroupAdd(bad);
+    if (subgroupElect()) {
+        atomicMax(range.values[2u * params.slot], floatBitsToUint(subgroup_peak));
+        if (subgroup_bad > 0u) atomicAdd(range.values[2u * params.slot + 1u], subgroup_bad);
+    }
+#else
     // One atomic per workgroup, not per texel.
     uint i = gl_LocalInvocationIndex;
     group_peak[i] = peak;
@@ -50,4 +65,5 @@ void main() {
         atomicMax(range.values[2u * params.slot], floatBitsToUint(group_peak[0]));
         if (group_bad[0] > 0u) atomicAdd(range.values[2u * params.slot + 1u], group_bad[0]);
     }
+#endif
 }

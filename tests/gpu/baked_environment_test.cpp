@@ -135,6 +135,22 @@ TEST_F(BakedEnvironmentTest, SaveThenLoadGivesTheSameTexelsWithExtractedLights) 
     EXPECT_NE(in.cube_sampler, VkSampler(VK_NULL_HANDLE));
 }
 
+TEST_F(BakedEnvironmentTest, SpecularLevelZeroIsTheEnvironmentCubesLevelZero) {
+    // The pass that makes the cube writes specular level 0 (the mirror) too: the same texels.
+    BakeSettings settings = small_settings();
+    settings.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    auto baked = bake(sun_source(128, 1e4, 3.0), settings);
+    ASSERT_TRUE(baked) << baked.error().message;
+    ASSERT_NE(baked->specular(), nullptr);
+    for (const auto& t : baked->metadata().timings) EXPECT_NE(t.name, "specular level 0 (copy)") << "no copy pass";
+    for (uint32_t layer = 0; layer < 6; ++layer) {
+        const auto cube = test::must(read_image(ctx(), baked->cube(), 0, layer, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
+        const auto mirror =
+            test::must(read_image(ctx(), *baked->specular(), 0, layer, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
+        EXPECT_TRUE(cube == mirror) << "face " << layer;
+    }
+}
+
 TEST_F(BakedEnvironmentTest, SaveThenLoadGivesTheSameTexelsWithSh9InHalfFloat) {
     BakeSettings settings = small_settings();
     settings.ibl.irradiance.method = IrradianceMethod::sh9;

@@ -70,8 +70,11 @@ uint32_t convolve_source_size(float roughness);
 // With `equirect` (the input, RGBA32F, at least 16 rows), convolve levels list its texels
 // directly instead of a cube level's (no resampling between input and result), and with
 // `equirect_sampler` too (linear, repeat in u), hybrid levels split the input itself.
+// `level0_written`: `specular` is a version whose level 0 already holds the environment's
+// level 0 (add_environment_cube_passes' mirror), so no copy pass is added for it.
 Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& programs, const Sampler& cube_sampler,
                                         ImageHandle environment, ImageHandle specular, const SpecularSettings& settings,
-                                        ImageHandle equirect = {}, const Sampler* equirect_sampler = nullptr);
+                                        ImageHandle equirect = {}, const Sampler* equirect_sampler = nullptr,
+                                        bool level0_written = false);
 
 }  // namespace facet
