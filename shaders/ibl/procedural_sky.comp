@@ -27,7 +27,13 @@ vec3 sky_radiance(vec3 d) {
     }
     vec3 sky = mix(params.horizon_radiance.rgb, params.zenith_radiance.rgb, sqrt(d.y));
     // Forward-scattering glow around the sun (a smooth lobe, not a second light).
-    float glow = pow(max(cos_sun, 0.0), 64.0);
+    float glow = max(cos_sun, 0.0);  // its 64th power, by six squarings
+    glow *= glow;
+    glow *= glow;
+    glow *= glow;
+    glow *= glow;
+    glow *= glow;
+    glow *= glow;
     return sky + glow * params.sun_radiance_glow.a * params.horizon_radiance.rgb;
 }
 
@@ -35,12 +41,21 @@ void main() {
     ivec2 size = imageSize(out_sky);
     ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(texel, size))) return;
+    // The 4 x 4 directions are equirect_direction's, with each row's latitude and each
+    // column's longitude evaluated once (8 sine-cosine pairs per texel, not 32).
+    vec2 longitude_sin_cos[4];
+    for (int i = 0; i < 4; ++i) {
+        float u = (float(texel.x) + (float(i) + 0.5) / 4.0) / float(size.x);
+        float phi = (u - 0.5) * 2.0 * facet_pi;
+        longitude_sin_cos[i] = vec2(sin(phi), cos(phi));
+    }
     vec3 sum = vec3(0.0);
     for (int j = 0; j < 4; ++j) {
-        for (int i = 0; i < 4; ++i) {
-            vec2 uv = (vec2(texel) + (vec2(i, j) + 0.5) / 4.0) / vec2(size);
-            sum += sky_radiance(equirect_direction(uv));
-        }
+        float v = (float(texel.y) + (float(j) + 0.5) / 4.0) / float(size.y);
+        float theta = (0.5 - v) * facet_pi;
+        float c = cos(theta), s = sin(theta);
+        for (int i = 0; i < 4; ++i)
+            sum += sky_radiance(vec3(c * longitude_sin_cos[i].y, s, c * longitude_sin_cos[i].x));
     }
     imageStore(out_sky, texel, vec4(sum / 16.0, 1.0));
 }
