@@ -102,6 +102,7 @@ private:
     VkPhysicalDeviceMemoryProperties properties_{};
     VkDeviceSize non_coherent_atom_ = 1;
     VkDeviceSize granularity_ = 1;
+    bool cpu_device_ = false;  // lavapipe and the like: device memory is the process's memory
     mutable std::mutex mutex_;
     std::vector<Block> blocks_;
     uint32_t dedicated_count_ = 0;
