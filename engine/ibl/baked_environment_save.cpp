@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <future>
 
 #include <facet/gpu/transfer.h>
 #include <facet/ibl/baked_environment.h>
@@ -207,10 +208,20 @@ Status BakedEnvironment::stage(OutputSet& outputs, const std::string& dir, const
     const ImageDesc& e = environment_.desc();
     std::vector<float> env(env_levels[0].size() / sizeof(float));
     std::memcpy(env.data(), env_levels[0].data(), env.size() * sizeof(float));
-    if (Status s = write_hdr_image(staged("environment.exr"), e.width, e.height, env); !s) return s;
+    // The environment's float files (EXR, and the RGBE preview) are encoded on a second
+    // thread while this one writes the rest: the EXR's compression is most of the save.
+    // Staging (the OutputSet) and GPU reads stay on this thread; every return below
+    // waits for the second one (the future's destructor) before the staged files go.
     const char* no_previews = "previews are not written here";
+    const std::string exr_path = staged("environment.exr");
+    std::string hdr_path;
     if (!options.previews) remove_old("environment.hdr", no_previews);
-    else if (Status s = write_hdr_image(staged("environment.hdr"), e.width, e.height, env); !s) return s;
+    else hdr_path = staged("environment.hdr");
+    std::future<Status> env_files = std::async(std::launch::async, [&]() -> Status {
+        if (Status s = write_hdr_image(exr_path, e.width, e.height, env); !s) return s;
+        if (!hdr_path.empty()) return write_hdr_image(hdr_path, e.width, e.height, env);
+        return Ok{};
+    });
     if (!options.previews) {
         remove_old("environment.png", no_previews);
     } else if (preview_) {
@@ -257,6 +268,7 @@ Status BakedEnvironment::stage(OutputSet& outputs, const std::string& dir, const
     }
     if (sh9_.empty()) remove_old("sh9.json", "this bake does not use spherical harmonics");
     else if (Status s = write_text_file(staged("sh9.json"), sh9_json(sh9_)); !s) return s;
+    if (Status s = env_files.get(); !s) return s;
     // bake.json last: the set's marker, its presence with a bake key marks a complete bake.
     return write_text_file(staged("bake.json"), bake_json(*this));
 } catch (const BakeCancelled&) {

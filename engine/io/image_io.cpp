@@ -34,6 +34,8 @@ Status write_image_file(const std::string& final_path, const std::string& path, 
 
 }  // namespace
 
+void preload_image_io() { (void)image_module(); }
+
 Status write_hdr_image(const std::string& path, uint32_t width, uint32_t height, std::span<const float> rgba) {
     if (rgba.size() != size_t(width) * height * 4)
         return Error{path + ": pixel buffer does not match " + std::to_string(width) + "x" + std::to_string(height)};
@@ -59,8 +61,10 @@ Status write_ldr_image(const std::string& path, uint32_t width, uint32_t height,
         return Error{path + ": pixel buffer does not match " + std::to_string(width) + "x" + std::to_string(height)};
     return write_atomically(path, [&](const std::string& temp) -> Status {
         // Our texels are straight (unassociated) alpha; stop OIIO from dividing by alpha.
+        // zlib's fastest level: a 1024x512 preview in ~1/4 of the default's time, the file
+        // at most ~1.3x as large.
         return write_image_file(path, temp, width, height, 4, FACET_IMAGE_UINT8, rgba.data(),
-                                {{"oiio:UnassociatedAlpha", nullptr, 1}});
+                                {{"oiio:UnassociatedAlpha", nullptr, 1}, {"png:compressionLevel", nullptr, 1}});
     });
 }
 

@@ -13,6 +13,12 @@ namespace facet {
 Status write_hdr_image(const std::string& path, uint32_t width, uint32_t height,
                        std::span<const float> rgba);
 
+// Loads the module that reads and writes image files (OpenImageIO and its libraries:
+// about 0.3 s of CPU) now, so that the first read or write does not pay for it; run on a
+// worker thread, it overlaps other work. Thread-safe; a failure to load is left to that
+// first read or write to report.
+void preload_image_io();
+
 // 8-bit RGBA (already tone-mapped and encoded), e.g. a .png preview. Written atomically.
 Status write_ldr_image(const std::string& path, uint32_t width, uint32_t height,
                        std::span<const uint8_t> rgba);
