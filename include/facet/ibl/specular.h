@@ -36,7 +36,7 @@ struct SpecularSettings {
     // hybrid: filtered samples of the residual. 128, not 64: at 64 the levels are as close
     // to the truth (0.08% on royal_esplanade at 512 x 256) but the final image of the thesis
     // model under it was 3.00% off in its worst group, 2.94% at 128 (facet-bench accuracy).
-    uint32_t hybrid_sample_count = 128;
+    uint32_t hybrid_sample_count = 96;
     float excess_factor = 16.0f;           // hybrid: the threshold T, x the environment's mean luminance
     // Model no more than the scene needs: levels that no lookup with roughness >= this
     // reaches (trilinear reads floor(roughness x (levels - 1)) and the level above) are
