@@ -14,10 +14,12 @@ void dispatch_cube(PassContext& pc, const Pipeline& pipeline, uint32_t n) {
     vkCmdDispatch(pc.cmd(), group_count(n, local[0]), group_count(n, local[1]), group_count(6, local[2]));
 }
 
-void dispatch_cube_faces(PassContext& pc, const Pipeline& pipeline, uint32_t n, uint32_t first, uint32_t count) {
+void dispatch_cube_faces(PassContext& pc, const Pipeline& pipeline, uint32_t n, uint32_t first, uint32_t count,
+                         uint32_t texels_per_invocation_x) {
     const auto local = pipeline.workgroup_size();
     if (local[2] != 1) throw UsageError("dispatch_cube_faces: the shader's local size in z must be 1");
-    vkCmdDispatchBase(pc.cmd(), 0, 0, first, group_count(n, local[0]), group_count(n, local[1]), count);
+    const uint32_t columns = (n + texels_per_invocation_x - 1) / texels_per_invocation_x;
+    vkCmdDispatchBase(pc.cmd(), 0, 0, first, group_count(columns, local[0]), group_count(n, local[1]), count);
 }
 
 Result<CubeTexelList> add_cube_texel_list_pass(RenderGraph& graph, ProgramCache& programs, ImageHandle environment,

@@ -36,8 +36,10 @@ Result<CubeTexelList> add_equirect_texel_list_pass(RenderGraph& graph, ProgramCa
 // `pipeline`'s workgroups over every face of an n x n level (z: the 6 faces).
 void dispatch_cube(PassContext& pc, const Pipeline& pipeline, uint32_t n);
 // Faces first .. first + count - 1 of it (gl_GlobalInvocationID.z the face; the shader's
-// local size in z 1).
-void dispatch_cube_faces(PassContext& pc, const Pipeline& pipeline, uint32_t n, uint32_t first, uint32_t count);
+// local size in z 1), for a shader whose invocations make `texels_per_invocation_x` texels
+// side by side in x.
+void dispatch_cube_faces(PassContext& pc, const Pipeline& pipeline, uint32_t n, uint32_t first, uint32_t count,
+                         uint32_t texels_per_invocation_x = 1);
 
 constexpr VkImageViewType cube_array_view = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
 

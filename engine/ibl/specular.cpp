@@ -5,6 +5,7 @@
 #include <optional>
 
 #include <facet/core/shared_constants.h>
+#include <facet/gpu/context.h>
 #include <facet/gpu/resources.h>
 #include <facet/graph/graph_run.h>
 #include "ibl/cube_texel_list.h"
@@ -46,6 +47,11 @@ constexpr double kExcessBlockPerAlpha = 0.31;
 // windows) reads the list of blocks twice as wide instead: each entry costs about half a
 // filtered sample per texel, and wide regions are smooth where a sun is not.
 constexpr uint32_t kMostExcessEntries = 256;
+// Texels side by side per invocation of specular_hybrid.comp (its TEXELS): 8 on a CPU
+// device (lavapipe), whose buffer reads cost per lane and are then shared; 1 on a GPU.
+uint32_t hybrid_texels_per_invocation(const Context& context) {
+    return context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 8u : 1u;
+}
 
 uint32_t excess_block(double texel_angle, float roughness) {
     const double alpha = std::max(double(roughness) * roughness, 1e-4);
@@ -386,7 +392,9 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
                 float inverse_weight;
                 uint32_t most_entries;
             };
-            auto hybrid = programs.compute("ibl/specular_hybrid.comp");
+            const uint32_t per_invocation = hybrid_texels_per_invocation(programs.context());
+            const std::vector<ShaderDefine> defines{{"FACET_HYBRID_TEXELS", std::to_string(per_invocation)}};
+            auto hybrid = programs.compute("ibl/specular_hybrid.comp", defines);
             if (!hybrid) return hybrid.error();
             std::vector<float> table;
             const double sample_weight = hybrid_samples(s.hybrid_sample_count, r, split->residual_size, table);
@@ -406,6 +414,7 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
                     b.read(samples);
                     current = b.write_storage(current, ImageRange::mip(m));
                 }, [p = *hybrid, residual = split->residual, list = *list, coarse = *coarse, samples, specular, m, n, params, f,
+                    per_invocation,
                     sampler = cube_sampler.handle()](PassContext& pc) {
                     p->bind(pc.cmd());
                     const DescriptorWrite writes[] = {
@@ -416,7 +425,7 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
                         DescriptorWrite::storage_buffer(pc.buffer(coarse))};
                     p->push_descriptors(pc.cmd(), writes);
                     p->push_constants(pc.cmd(), params);
-                    dispatch_cube_faces(pc, *p, n, f.first, f.count);
+                    dispatch_cube_faces(pc, *p, n, f.first, f.count, per_invocation);
                 });
             continue;
         }

@@ -5,6 +5,10 @@
 // above T (specular_excess.comp). The residual's part by filtered importance sampling
 // (Krivanek and Colbert 2008) with a few samples, the excess's exactly, entry by entry:
 // E_j w(l_j) / W. A sun then costs one entry instead of a thousand samples.
+// Each invocation makes TEXELS texels side by side in x (FACET_HYBRID_TEXELS; 8 on a CPU
+// device, 1 elsewhere; add_specular_passes dispatches accordingly): every sample and entry
+// read from the buffers serves all of them (lavapipe reads a buffer lane by lane: level 1
+// in about half the time); a GPU keeps one texel per invocation, and its parallelism.
 #include "ibl/cube.glsl"
 #include "facet/brdf.glsl"
 
@@ -26,6 +30,11 @@ layout(std430, binding = 4) readonly buffer Coarse {
     vec4 entries[];
 } coarse;
 
+#ifndef FACET_HYBRID_TEXELS
+#define FACET_HYBRID_TEXELS 1
+#endif
+const uint TEXELS = FACET_HYBRID_TEXELS;
+
 layout(push_constant) uniform Params {
     uint sample_count;
     float roughness;
@@ -37,36 +46,50 @@ layout(push_constant) uniform Params {
 void main() {
     uint n = uint(imageSize(level).x);
     uvec3 id = gl_GlobalInvocationID;
-    if (id.x >= n || id.y >= n) return;
-    vec3 N = normalize(cube_direction(id.z, (vec2(id.xy) + 0.5) / float(n)));
-    vec3 up = abs(N.z) < 0.999 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0);
-    vec3 tangent_x = normalize(cross(up, N));
-    vec3 tangent_y = cross(N, tangent_x);
-    vec3 sum = vec3(0.0);
+    uint x0 = TEXELS * id.x;
+    if (x0 >= n || id.y >= n) return;
+    vec3 N[TEXELS], tangent_x[TEXELS], tangent_y[TEXELS], sum[TEXELS], excess[TEXELS];
+    for (uint k = 0u; k < TEXELS; ++k) {
+        N[k] = normalize(cube_direction(id.z, (vec2(x0 + k, id.y) + 0.5) / float(n)));
+        vec3 up = abs(N[k].z) < 0.999 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0);
+        tangent_x[k] = normalize(cross(up, N[k]));
+        tangent_y[k] = cross(N[k], tangent_x[k]);
+        sum[k] = vec3(0.0);
+        excess[k] = vec3(0.0);
+    }
     for (uint i = 0u; i < params.sample_count; ++i) {
         vec4 t = samples[i];
-        vec3 L = t.x * tangent_x + t.y * tangent_y + t.z * N;
-        sum += textureLod(residual, L, t.w).rgb * t.z;
+        for (uint k = 0u; k < TEXELS; ++k) {
+            vec3 L = t.x * tangent_x[k] + t.y * tangent_y[k] + t.z * N[k];
+            sum[k] += textureLod(residual, L, t.w).rgb * t.z;
+        }
     }
-    vec3 result = sum * params.inverse_sample_weight;
     // D(h) (n.l) with (n.h)^2 = (1 + n.l) / 2 for h = normalize(n + l): no normalisation
     // per entry; the constant alpha^2 / pi is applied once, with 1 / W.
     float alpha = max(params.roughness * params.roughness, MIN_ALPHA);
     float a2_minus_1 = alpha * alpha - 1.0;
-    vec3 excess = vec3(0.0);
     if (list.count <= params.most_entries) {
         for (uint j = 0u; j < list.count; ++j) {
-            float NdotL = max(dot(N, list.entries[2u * j].xyz), 0.0);
-            float d = (0.5 + 0.5 * NdotL) * a2_minus_1 + 1.0;
-            excess += list.entries[2u * j + 1u].rgb * (NdotL / (d * d));
+            vec3 l = list.entries[2u * j].xyz, e = list.entries[2u * j + 1u].rgb;
+            for (uint k = 0u; k < TEXELS; ++k) {
+                float NdotL = max(dot(N[k], l), 0.0);
+                float d = (0.5 + 0.5 * NdotL) * a2_minus_1 + 1.0;
+                excess[k] += e * (NdotL / (d * d));
+            }
         }
     } else {
         for (uint j = 0u; j < coarse.count; ++j) {
-            float NdotL = max(dot(N, coarse.entries[2u * j].xyz), 0.0);
-            float d = (0.5 + 0.5 * NdotL) * a2_minus_1 + 1.0;
-            excess += coarse.entries[2u * j + 1u].rgb * (NdotL / (d * d));
+            vec3 l = coarse.entries[2u * j].xyz, e = coarse.entries[2u * j + 1u].rgb;
+            for (uint k = 0u; k < TEXELS; ++k) {
+                float NdotL = max(dot(N[k], l), 0.0);
+                float d = (0.5 + 0.5 * NdotL) * a2_minus_1 + 1.0;
+                excess[k] += e * (NdotL / (d * d));
+            }
         }
     }
-    excess *= alpha * alpha / PI;
-    imageStore(level, ivec3(id), vec4(result + excess * params.inverse_weight, 1.0));
+    float excess_scale = alpha * alpha / PI * params.inverse_weight;
+    for (uint k = 0u; k < TEXELS; ++k)
+        if (x0 + k < n)
+            imageStore(level, ivec3(x0 + k, id.y, id.z),
+                       vec4(sum[k] * params.inverse_sample_weight + excess[k] * excess_scale, 1.0));
 }

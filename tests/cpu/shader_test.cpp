@@ -65,6 +65,24 @@ TEST(ShaderCompiler, CompilesEveryEmbeddedEntryShader) {
     }
 }
 
+// Variants chosen by the device that lavapipe, where the tests run, never takes: they
+// must at least compile (a GPU's one texel per hybrid invocation; the output ranges'
+// reduction in shared memory for a device without subgroup arithmetic).
+TEST(ShaderCompiler, CompilesTheVariantsLavapipeDoesNotRun) {
+    ShaderCompiler compiler;
+    const ShaderDefine one_texel{"FACET_HYBRID_TEXELS", "1"}, eight_texels{"FACET_HYBRID_TEXELS", "8"};
+    for (const ShaderDefine& d : {one_texel, eight_texels}) {
+        auto spirv = compiler.compile(ShaderStage::compute, "ibl/specular_hybrid.comp", std::span(&d, 1));
+        EXPECT_TRUE(spirv) << d.value << ": " << (spirv ? "" : spirv.error().message);
+    }
+    auto workgroup = compiler.compile(ShaderStage::compute, "ibl/output_range.comp");
+    ASSERT_TRUE(workgroup) << workgroup.error().message;
+    const ShaderDefine subgroup{"FACET_SUBGROUP_REDUCE", "1"};
+    auto reduced = compiler.compile(ShaderStage::compute, "ibl/output_range.comp", std::span(&subgroup, 1));
+    ASSERT_TRUE(reduced) << reduced.error().message;
+    EXPECT_NE(workgroup->words, reduced->words);
+}
+
 // The shading include a host's shaders call and the constants header it reads (embedded
 // from include/facet/core, byte for byte) are in the library under facet/.
 TEST(ShaderCompiler, EmbedsTheShadingIncludeAndTheSharedConstants) {
