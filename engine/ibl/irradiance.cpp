@@ -3,6 +3,7 @@
 #include <cmath>
 #include <vector>
 
+#include <facet/gpu/context.h>
 #include <facet/gpu/resources.h>
 #include "ibl/cube_texel_list.h"
 #include <facet/graph/graph_run.h>
@@ -44,6 +45,11 @@ Result<ImageHandle> add_texel_convolution(RenderGraph& graph, ProgramCache& prog
     // pays for the exact form at every entry, whichever normal needs it.
     std::vector<ShaderDefine> defines;
     if (!blur && list->max_spread < kNarrowCapSpread) defines.push_back({"FACET_NARROW_CAPS", "1"});
+    // Eight texels per invocation on a CPU device, whose buffer reads cost per lane (a GPU
+    // keeps one, and its parallelism).
+    const uint32_t per_invocation =
+        programs.context().properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 8u : 1u;
+    defines.push_back({"FACET_IRRADIANCE_TEXELS", std::to_string(per_invocation)});
     auto convolve = programs.compute("ibl/irradiance_convolve.comp", defines);
     if (!convolve) return convolve.error();
     const Params params{list->count, blur ? 1u : 0u, s.blur_sigma};
@@ -51,13 +57,13 @@ Result<ImageHandle> add_texel_convolution(RenderGraph& graph, ProgramCache& prog
     graph.add_compute_pass(blur ? "irradiance blur" : "irradiance convolve", [&](PassBuilder& b) {
         b.read(list->buffer);
         written = b.write_storage(irradiance);
-    }, [p = *convolve, texels = list->buffer, irradiance, params, n = s.size](PassContext& pc) {
+    }, [p = *convolve, texels = list->buffer, irradiance, params, n = s.size, per_invocation](PassContext& pc) {
         p->bind(pc.cmd());
         const DescriptorWrite writes[] = {DescriptorWrite::storage_buffer(pc.buffer(texels)),
                                           DescriptorWrite::storage_image(pc.view(irradiance, {}, array_view))};
         p->push_descriptors(pc.cmd(), writes);
         p->push_constants(pc.cmd(), params);
-        dispatch_cube(pc, *p, n);
+        dispatch_cube_faces(pc, *p, n, 0, 6, per_invocation);
     });
     return written;
 }

@@ -47,8 +47,9 @@ constexpr double kExcessBlockPerAlpha = 0.31;
 // windows) reads the list of blocks twice as wide instead: each entry costs about half a
 // filtered sample per texel, and wide regions are smooth where a sun is not.
 constexpr uint32_t kMostExcessEntries = 256;
-// Texels side by side per invocation of specular_hybrid.comp (its TEXELS): 8 on a CPU
-// device (lavapipe), whose buffer reads cost per lane and are then shared; 1 on a GPU.
+// Texels side by side per invocation of specular_hybrid.comp and specular_convolve.comp
+// (their TEXELS): 8 on a CPU device (lavapipe), whose buffer reads cost per lane and are
+// then shared; 1 on a GPU.
 uint32_t hybrid_texels_per_invocation(const Context& context) {
     return context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 8u : 1u;
 }
@@ -349,7 +350,9 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
                 uint32_t texel_count;
                 float roughness;
             };
-            auto conv = programs.compute("ibl/specular_convolve.comp");
+            const uint32_t per_invocation = hybrid_texels_per_invocation(programs.context());
+            const std::vector<ShaderDefine> defines{{"FACET_CONVOLVE_TEXELS", std::to_string(per_invocation)}};
+            auto conv = programs.compute("ibl/specular_convolve.comp", defines);
             if (!conv) return conv.error();
             const uint32_t source = convolve_source_size(r);
             const bool from_equirect = equirect.valid() && graph.resource(equirect).image_desc.height >= 16;
@@ -364,14 +367,14 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
                 graph.add_compute_pass(f.name, [&](PassBuilder& b) {
                     b.read(texels);
                     current = b.write_storage(current, ImageRange::mip(m));
-                }, [p = *conv, texels, specular, m, n, params, f](PassContext& pc) {
+                }, [p = *conv, texels, specular, m, n, params, f, per_invocation](PassContext& pc) {
                     p->bind(pc.cmd());
                     const DescriptorWrite writes[] = {
                         DescriptorWrite::storage_buffer(pc.buffer(texels)),
                         DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(m), specular_array_view))};
                     p->push_descriptors(pc.cmd(), writes);
                     p->push_constants(pc.cmd(), params);
-                    dispatch_cube_faces(pc, *p, n, f.first, f.count);
+                    dispatch_cube_faces(pc, *p, n, f.first, f.count, per_invocation);
                 });
             continue;
         }

@@ -14,6 +14,14 @@
 #include "facet/shared_constants.h"
 #include "ibl/cube.glsl"
 
+// Each invocation makes TEXELS texels side by side in x (FACET_IRRADIANCE_TEXELS: 8 on a
+// CPU device, 1 elsewhere; add_irradiance_passes dispatches accordingly), so that each
+// entry read from the list (lane by lane on lavapipe) serves all of them.
+#ifndef FACET_IRRADIANCE_TEXELS
+#define FACET_IRRADIANCE_TEXELS 1
+#endif
+const uint TEXELS = FACET_IRRADIANCE_TEXELS;
+
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(std430, binding = 0) readonly buffer Texels { vec4 texels[]; };
 layout(binding = 1, rgba32f) uniform writeonly image2DArray irradiance;
@@ -52,28 +60,39 @@ float flat_cap_cosine(float cos_theta, float s, float inverse_s) {
 void main() {
     uint n = uint(imageSize(irradiance).x);
     uvec3 id = gl_GlobalInvocationID;
-    if (id.x >= n || id.y >= n) return;
-    vec3 normal = normalize(cube_direction(id.z, (vec2(id.xy) + 0.5) / float(n)));
-    vec3 sum = vec3(0.0);
-    float weight_sum = 0.0;
+    uint x0 = TEXELS * id.x;
+    if (x0 >= n || id.y >= n) return;
+    vec3 normal[TEXELS], sum[TEXELS];
+    float weight_sum[TEXELS];
+    for (uint k = 0u; k < TEXELS; ++k) {
+        normal[k] = normalize(cube_direction(id.z, (vec2(x0 + k, id.y) + 0.5) / float(n)));
+        sum[k] = vec3(0.0);
+        weight_sum[k] = 0.0;
+    }
     float inv_sigma2 = 1.0 / max(params.sigma * params.sigma, 1e-6);
     for (uint i = 0u; i < params.texel_count; ++i) {
         vec4 direction_spread = texels[2u * i];
         vec4 radiance_solid_angle_and_solid_angle = texels[2u * i + 1u];
         vec3 radiance_solid_angle = radiance_solid_angle_and_solid_angle.rgb;
-        float c = dot(normal, direction_spread.xyz);
         float sin2_sigma = max(direction_spread.w, 1e-12);
 #ifdef FACET_NARROW_CAPS
         float s = sqrt(sin2_sigma);
-        float w = flat_cap_cosine(c, s, 1.0 / s);
-#else
-        float w = params.gaussian == 0u ? clipped_cap_cosine(c, sin2_sigma) : exp((c - 1.0) * inv_sigma2);
+        float inverse_s = 1.0 / s;
 #endif
-        sum += w * radiance_solid_angle;
-        weight_sum += w * radiance_solid_angle_and_solid_angle.w;
+        for (uint k = 0u; k < TEXELS; ++k) {
+            float c = dot(normal[k], direction_spread.xyz);
+#ifdef FACET_NARROW_CAPS
+            float w = flat_cap_cosine(c, s, inverse_s);
+#else
+            float w = params.gaussian == 0u ? clipped_cap_cosine(c, sin2_sigma) : exp((c - 1.0) * inv_sigma2);
+#endif
+            sum[k] += w * radiance_solid_angle;
+            weight_sum[k] += w * radiance_solid_angle_and_solid_angle.w;
+        }
     }
     // Normalised by the discrete kernel's own integral over the sphere (which tends to pi
     // for the clamped cosine), so a uniform sky is exact at any resolution.
-    vec3 result = sum / max(weight_sum, 1e-30);
-    imageStore(irradiance, ivec3(id), vec4(result, 1.0));
+    for (uint k = 0u; k < TEXELS; ++k)
+        if (x0 + k < n)
+            imageStore(irradiance, ivec3(x0 + k, id.y, id.z), vec4(sum[k] / max(weight_sum[k], 1e-30), 1.0));
 }

@@ -8,6 +8,14 @@
 #include "facet/brdf.glsl"
 #include "ibl/cube.glsl"
 
+// Each invocation makes TEXELS texels side by side in x (FACET_CONVOLVE_TEXELS: 8 on a
+// CPU device, 1 elsewhere; add_specular_passes dispatches accordingly), so that each
+// entry read from the list (lane by lane on lavapipe) serves all of them.
+#ifndef FACET_CONVOLVE_TEXELS
+#define FACET_CONVOLVE_TEXELS 1
+#endif
+const uint TEXELS = FACET_CONVOLVE_TEXELS;
+
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(std430, binding = 0) readonly buffer Texels { vec4 texels[]; };
 layout(binding = 1, rgba32f) uniform writeonly image2DArray level;
@@ -20,19 +28,28 @@ layout(push_constant) uniform Params {
 void main() {
     uint n = uint(imageSize(level).x);
     uvec3 id = gl_GlobalInvocationID;
-    if (id.x >= n || id.y >= n) return;
-    vec3 normal = normalize(cube_direction(id.z, (vec2(id.xy) + 0.5) / float(n)));
-    vec3 sum = vec3(0.0);
-    float weight_sum = 0.0;
+    uint x0 = TEXELS * id.x;
+    if (x0 >= n || id.y >= n) return;
+    vec3 normal[TEXELS], sum[TEXELS];
+    float weight_sum[TEXELS];
+    for (uint k = 0u; k < TEXELS; ++k) {
+        normal[k] = normalize(cube_direction(id.z, (vec2(x0 + k, id.y) + 0.5) / float(n)));
+        sum[k] = vec3(0.0);
+        weight_sum[k] = 0.0;
+    }
     for (uint i = 0u; i < params.texel_count; ++i) {
         vec3 l = texels[2u * i].xyz;
         vec4 radiance_solid_angle = texels[2u * i + 1u];
-        float NdotL = dot(normal, l);
-        if (NdotL <= 0.0) continue;
-        vec3 h = normalize(normal + l);
-        float w = D_GGX(dot(normal, h), params.roughness) * NdotL;
-        sum += w * radiance_solid_angle.rgb;
-        weight_sum += w * radiance_solid_angle.w;
+        for (uint k = 0u; k < TEXELS; ++k) {
+            float NdotL = dot(normal[k], l);
+            vec3 h = normalize(normal[k] + l);
+            // Below the horizon the weight is 0 (a select, not a branch: lavapipe runs both).
+            float w = NdotL > 0.0 ? D_GGX(dot(normal[k], h), params.roughness) * NdotL : 0.0;
+            sum[k] += w * radiance_solid_angle.rgb;
+            weight_sum[k] += w * radiance_solid_angle.w;
+        }
     }
-    imageStore(level, ivec3(id), vec4(sum / max(weight_sum, 1e-30), 1.0));
+    for (uint k = 0u; k < TEXELS; ++k)
+        if (x0 + k < n)
+            imageStore(level, ivec3(x0 + k, id.y, id.z), vec4(sum[k] / max(weight_sum[k], 1e-30), 1.0));
 }

@@ -66,15 +66,20 @@ TEST(ShaderCompiler, CompilesEveryEmbeddedEntryShader) {
 }
 
 // Variants chosen by the device that lavapipe, where the tests run, never takes: they
-// must at least compile (a GPU's one texel per hybrid invocation; the output ranges'
-// reduction in shared memory for a device without subgroup arithmetic).
+// must at least compile (a GPU's one texel per invocation of the convolutions; the output
+// ranges' reduction in shared memory for a device without subgroup arithmetic).
 TEST(ShaderCompiler, CompilesTheVariantsLavapipeDoesNotRun) {
     ShaderCompiler compiler;
-    const ShaderDefine one_texel{"FACET_HYBRID_TEXELS", "1"}, eight_texels{"FACET_HYBRID_TEXELS", "8"};
-    for (const ShaderDefine& d : {one_texel, eight_texels}) {
-        auto spirv = compiler.compile(ShaderStage::compute, "ibl/specular_hybrid.comp", std::span(&d, 1));
-        EXPECT_TRUE(spirv) << d.value << ": " << (spirv ? "" : spirv.error().message);
-    }
+    const std::pair<const char*, const char*> per_invocation[] = {
+        {"ibl/specular_hybrid.comp", "FACET_HYBRID_TEXELS"},
+        {"ibl/specular_convolve.comp", "FACET_CONVOLVE_TEXELS"},
+        {"ibl/irradiance_convolve.comp", "FACET_IRRADIANCE_TEXELS"}};
+    for (auto [shader, define] : per_invocation)
+        for (const char* texels : {"1", "8"}) {
+            const ShaderDefine d{define, texels};
+            auto spirv = compiler.compile(ShaderStage::compute, shader, std::span(&d, 1));
+            EXPECT_TRUE(spirv) << shader << ", " << texels << " texels: " << (spirv ? "" : spirv.error().message);
+        }
     auto workgroup = compiler.compile(ShaderStage::compute, "ibl/output_range.comp");
     ASSERT_TRUE(workgroup) << workgroup.error().message;
     const ShaderDefine subgroup{"FACET_SUBGROUP_REDUCE", "1"};
