@@ -34,7 +34,7 @@ cli::Parser make_parser() {
         .option("--size", "N", "cube face size (default: input height / 2)")
         .option("--levels", "N", "specular levels, roughness m/(N-1) (default 6)")
         .option("--irradiance-size", "N", "irradiance face size (default 32)")
-        .option("--lut-size", "N", "BRDF LUT width and height (default 96)")
+        .option("--lut-size", "N", "BRDF LUT width and height (default 128)")
         .option("--lut-samples", "N", "GGX samples per LUT texel (default 2048)")
         .option("--brdf", "gltf|thesis", "BRDF model of the LUT: glTF 2.0's (default) or the thesis' (renders must match)")
         .option("--width", "N", "width of a built-in environment (default 1024, height N/2)")

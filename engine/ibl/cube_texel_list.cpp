@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <facet/core/shared_constants.h>
+#include <facet/gpu/context.h>
 #include <facet/graph/graph_run.h>
 #include <facet/shader/program_cache.h>
 
@@ -20,6 +21,10 @@ void dispatch_cube_faces(PassContext& pc, const Pipeline& pipeline, uint32_t n, 
     if (local[2] != 1) throw UsageError("dispatch_cube_faces: the shader's local size in z must be 1");
     const uint32_t columns = (n + texels_per_invocation_x - 1) / texels_per_invocation_x;
     vkCmdDispatchBase(pc.cmd(), 0, 0, first, group_count(columns, local[0]), group_count(n, local[1]), count);
+}
+
+uint32_t texels_per_invocation(const Context& context) {
+    return context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 8u : 1u;
 }
 
 Result<CubeTexelList> add_cube_texel_list_pass(RenderGraph& graph, ProgramCache& programs, ImageHandle environment,

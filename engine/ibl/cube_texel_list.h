@@ -11,6 +11,7 @@
 
 namespace facet {
 
+class Context;
 class PassContext;
 class Pipeline;
 class ProgramCache;
@@ -40,6 +41,11 @@ void dispatch_cube(PassContext& pc, const Pipeline& pipeline, uint32_t n);
 // side by side in x.
 void dispatch_cube_faces(PassContext& pc, const Pipeline& pipeline, uint32_t n, uint32_t first, uint32_t count,
                          uint32_t texels_per_invocation_x = 1);
+// Texels side by side per invocation for the shaders that loop over a buffer for each
+// texel (specular_hybrid, specular_convolve, irradiance_convolve: their TEXELS): 8 on a
+// CPU device (lavapipe reads a buffer lane by lane; each read then serves eight texels),
+// 1 on a GPU, which keeps its parallelism.
+uint32_t texels_per_invocation(const Context& context);
 
 constexpr VkImageViewType cube_array_view = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
 

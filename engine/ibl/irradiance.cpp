@@ -3,7 +3,6 @@
 #include <cmath>
 #include <vector>
 
-#include <facet/gpu/context.h>
 #include <facet/gpu/resources.h>
 #include "ibl/cube_texel_list.h"
 #include <facet/graph/graph_run.h>
@@ -45,10 +44,7 @@ Result<ImageHandle> add_texel_convolution(RenderGraph& graph, ProgramCache& prog
     // pays for the exact form at every entry, whichever normal needs it.
     std::vector<ShaderDefine> defines;
     if (!blur && list->max_spread < kNarrowCapSpread) defines.push_back({"FACET_NARROW_CAPS", "1"});
-    // Eight texels per invocation on a CPU device, whose buffer reads cost per lane (a GPU
-    // keeps one, and its parallelism).
-    const uint32_t per_invocation =
-        programs.context().properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 8u : 1u;
+    const uint32_t per_invocation = texels_per_invocation(programs.context());
     defines.push_back({"FACET_IRRADIANCE_TEXELS", std::to_string(per_invocation)});
     auto convolve = programs.compute("ibl/irradiance_convolve.comp", defines);
     if (!convolve) return convolve.error();

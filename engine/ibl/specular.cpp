@@ -5,7 +5,6 @@
 #include <optional>
 
 #include <facet/core/shared_constants.h>
-#include <facet/gpu/context.h>
 #include <facet/gpu/resources.h>
 #include <facet/graph/graph_run.h>
 #include "ibl/cube_texel_list.h"
@@ -47,12 +46,6 @@ constexpr double kExcessBlockPerAlpha = 0.31;
 // windows) reads the list of blocks twice as wide instead: each entry costs about half a
 // filtered sample per texel, and wide regions are smooth where a sun is not.
 constexpr uint32_t kMostExcessEntries = 256;
-// Texels side by side per invocation of specular_hybrid.comp and specular_convolve.comp
-// (their TEXELS): 8 on a CPU device (lavapipe), whose buffer reads cost per lane and are
-// then shared; 1 on a GPU.
-uint32_t hybrid_texels_per_invocation(const Context& context) {
-    return context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 8u : 1u;
-}
 
 uint32_t excess_block(double texel_angle, float roughness) {
     const double alpha = std::max(double(roughness) * roughness, 1e-4);
@@ -86,8 +79,8 @@ Result<ExcessSplit> add_excess_split(RenderGraph& graph, ProgramCache& programs,
     out.residual_size = env.width;
     if (equirect.valid() && equirect_sampler) {
         // The residual at half the face size when no sample of the smoothest hybrid level
-        // reads the full-size level (lod >= 1 everywhere: at 128 samples from roughness
-        // about 0.15 up); half the texels to resample and a smaller mip chain to read.
+        // reads the full-size level (lod >= 1 everywhere: at the default sample count from
+        // roughness about 0.15 up); half the texels to resample and a smaller mip chain to read.
         std::vector<float> table;
         hybrid_samples(s.hybrid_sample_count, smallest_roughness, env.width, table);
         float lowest = 1e30f;
@@ -350,7 +343,7 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
                 uint32_t texel_count;
                 float roughness;
             };
-            const uint32_t per_invocation = hybrid_texels_per_invocation(programs.context());
+            const uint32_t per_invocation = texels_per_invocation(programs.context());
             const std::vector<ShaderDefine> defines{{"FACET_CONVOLVE_TEXELS", std::to_string(per_invocation)}};
             auto conv = programs.compute("ibl/specular_convolve.comp", defines);
             if (!conv) return conv.error();
@@ -395,7 +388,7 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
                 float inverse_weight;
                 uint32_t most_entries;
             };
-            const uint32_t per_invocation = hybrid_texels_per_invocation(programs.context());
+            const uint32_t per_invocation = texels_per_invocation(programs.context());
             const std::vector<ShaderDefine> defines{{"FACET_HYBRID_TEXELS", std::to_string(per_invocation)}};
             auto hybrid = programs.compute("ibl/specular_hybrid.comp", defines);
             if (!hybrid) return hybrid.error();

@@ -33,9 +33,9 @@ struct SpecularSettings {
     uint32_t levels = 6;               // roughness of level m = m / (levels - 1)
     uint32_t sample_count = 1024;      // importance / filtered
     float automatic_convolve_from = 0.5f;  // automatic: convolve at and above this roughness, hybrid below
-    // hybrid: filtered samples of the residual. 128, not 64: at 64 the levels are as close
-    // to the truth (0.08% on royal_esplanade at 512 x 256) but the final image of the thesis
-    // model under it was 3.00% off in its worst group, 2.94% at 128 (facet-bench accuracy).
+    // hybrid: filtered samples of the residual. 96: the levels within 0.21% of 128's (all
+    // under 1.4% at 1024 x 512) and the thesis model's final image under royal_esplanade
+    // 2.94% off in its worst group at both; at 64 that group was 3.00% (facet-bench accuracy).
     uint32_t hybrid_sample_count = 96;
     float excess_factor = 16.0f;           // hybrid: the threshold T, x the environment's mean luminance
     // Model no more than the scene needs: levels that no lookup with roughness >= this
