@@ -10,26 +10,14 @@ disk is from the exact spherical cap (Snyder 1996) at a few radii. Standard libr
 """
 import math
 
+from make_sheen_albedo import solve  # Gaussian elimination, beside this script
+
 TERMS = 4
 N = 4001
 
 
 def g(t):
     return (t * math.asin(t) + math.sqrt(max(0.0, 1.0 - t * t)) * (2.0 + t * t) / 3.0) / math.pi
-
-
-def solve(a, b):
-    n = len(a)
-    m = [row[:] + [b[i]] for i, row in enumerate(a)]
-    for i in range(n):
-        p = max(range(i, n), key=lambda r: abs(m[r][i]))
-        m[i], m[p] = m[p], m[i]
-        for r in range(n):
-            if r != i:
-                f = m[r][i] / m[i][i]
-                for c in range(i, n + 1):
-                    m[r][c] -= f * m[i][c]
-    return [m[i][n] / m[i][i] for i in range(n)]
 
 
 def fit():
