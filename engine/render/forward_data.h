@@ -31,12 +31,6 @@ static_assert(sizeof(FrameData) == 112 && offsetof(FrameData, camera_position) =
                   offsetof(FrameData, counts) == 96,
               "Frame in forward_interface.glsl");
 
-struct DrawConstants {
-    uint32_t instance;
-    uint32_t material;
-};
-static_assert(sizeof(DrawConstants) == 8 && offsetof(DrawConstants, material) == 4, "Draw in forward_interface.glsl");
-
 struct SkyConstants {
     glm::mat4 inverse_view_projection;
     float lod;

@@ -394,8 +394,9 @@ ForwardOutputs ForwardRenderer::add_draw_pass(RenderGraph& graph, const std::str
             const DescriptorWrite writes[] = {
                 DescriptorWrite::uniform_buffer(slot.frame.handle()),
                 DescriptorWrite::storage_buffer(slot.lights.handle(), 0, lights_bytes),
-                DescriptorWrite::storage_buffer(gpu.instances()),
-                DescriptorWrite::storage_buffer(gpu.materials()),
+                DescriptorWrite::uniform_buffer(gpu.instances(), i * gpu.instance_stride(), sizeof(GpuInstance)),
+                DescriptorWrite::uniform_buffer(gpu.materials(), p.material * gpu.material_stride(),
+                                                sizeof(GpuMaterial)),
                 DescriptorWrite::sampled_image(irradiance, cube_sampler),
                 DescriptorWrite::sampled_image(specular, cube_sampler),
                 // clamped: NdotV near 1 must not wrap to NdotV = 0
@@ -420,7 +421,6 @@ ForwardOutputs ForwardRenderer::add_draw_pass(RenderGraph& graph, const std::str
                 tex(TextureSlot::thickness),
                 behind};
             pipeline->push_descriptors(cmd, writes);
-            pipeline->push_constants(cmd, DrawConstants{i, p.material});
             vkCmdDrawIndexed(cmd, p.index_count, 1, p.first_index, int32_t(p.vertex_offset), 0);
         }
         vkCmdEndRendering(cmd);

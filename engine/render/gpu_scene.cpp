@@ -111,6 +111,19 @@ Image solid_image(Context& context, VkFormat format, std::array<uint8_t, 4> rgba
     return image;
 }
 
+// The elements one every `stride` bytes (each bound alone as a uniform block).
+template <typename T>
+std::vector<std::byte> strided(const std::vector<T>& elements, VkDeviceSize stride) {
+    std::vector<std::byte> out(elements.size() * stride);
+    for (size_t i = 0; i < elements.size(); ++i) std::memcpy(out.data() + i * stride, &elements[i], sizeof(T));
+    return out;
+}
+
+VkDeviceSize uniform_stride(const Context& context, VkDeviceSize size) {
+    const VkDeviceSize align = std::max<VkDeviceSize>(context.properties().limits.minUniformBufferOffsetAlignment, 16);
+    return (size + align - 1) / align * align;
+}
+
 std::vector<GpuMaterial> gpu_materials(const std::vector<Material>& materials) {
     std::vector<GpuMaterial> out;
     for (const Material& m : materials)
@@ -134,7 +147,7 @@ std::vector<GpuMaterial> gpu_materials(const std::vector<Material>& materials) {
 
 Status GpuScene::update_materials(const std::vector<Material>& materials) {
     if (materials.size() != scene_.materials.size()) throw UsageError("update_materials: the material count changed");
-    return upload_buffer(context_, materials_, bytes_of(gpu_materials(materials)));
+    return upload_buffer(context_, materials_, strided(gpu_materials(materials), material_stride_));
 }
 
 Result<std::unique_ptr<GpuScene>> GpuScene::create(Context& context, const Scene& scene) {
@@ -152,9 +165,12 @@ GpuScene::GpuScene(Context& context, const Scene& scene)
     std::vector<GpuInstance> instances;
     for (const Instance& i : scene.instances)
         instances.push_back({i.world, glm::mat4(glm::transpose(glm::inverse(glm::mat3(i.world))))});
-    instances_ = make_buffer(context, bytes_of(instances), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "scene instances");
-    materials_ = make_buffer(context, bytes_of(gpu_materials(scene.materials)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                             "scene materials");
+    instance_stride_ = uniform_stride(context, sizeof(GpuInstance));
+    material_stride_ = uniform_stride(context, sizeof(GpuMaterial));
+    instances_ = make_buffer(context, strided(instances, instance_stride_), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                             "scene instances");
+    materials_ = make_buffer(context, strided(gpu_materials(scene.materials), material_stride_),
+                             VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "scene materials");
 
     white_srgb_ = solid_image(context, VK_FORMAT_R8G8B8A8_SRGB, {255, 255, 255, 255}, 1, "default white (sRGB)");
     white_linear_ = solid_image(context, VK_FORMAT_R8G8B8A8_UNORM, {255, 255, 255, 255}, 1, "default white");

@@ -301,7 +301,7 @@ Surface surface_at(MaterialData m) {
 }
 
 void main() {
-    MaterialData m = materials[draw.material];
+    MaterialData m = material;
 #ifdef FLAT_FLOOR
     // The rasterizer's floor (FrameSettings::flat_floor): the base colour factor, nothing read
     // or lit.
@@ -347,7 +347,7 @@ void main() {
     // What lies behind: the view ray leaves the surface at `exit`, refracted by the index
     // through a volume's thickness (world units: the instance's mean scale), the point
     // itself where it is thin-walled; its light is attenuated along the way.
-    mat4 world = instances[draw.instance].world;
+    mat4 world = instance.world;
     float path = max(surface.thickness, 0.0) * (length(world[0].xyz) + length(world[1].xyz) + length(world[2].xyz)) / 3.0;
     vec3 refracted = refract(-v, n, 1.0 / facet_ior_from_f0(m.emissive_f0.a));
     vec3 exit = in_world + (path > 0.0 && dot(refracted, refracted) > 0.0 ? normalize(refracted) * path : vec3(0.0));

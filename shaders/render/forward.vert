@@ -21,7 +21,6 @@ layout(location = 4) out vec4 out_color;
 layout(location = 5) out vec2 out_uv1;
 
 void main() {
-    InstanceData instance = instances[draw.instance];
     vec4 world = instance.world * vec4(in_position, 1.0);
     out_world = world.xyz;
     out_normal = mat3(instance.normal_matrix) * in_normal;

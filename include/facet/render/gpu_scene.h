@@ -40,7 +40,8 @@ enum class TextureSlot {
     count
 };
 
-// std430 layouts of shaders/render/forward_interface.glsl.
+// std140 (= std430 here: vec4 and mat4 members only) layouts of
+// shaders/render/forward_interface.glsl's Instance and Material blocks.
 struct GpuInstance {
     glm::mat4 world;
     glm::mat4 normal_matrix;
@@ -80,8 +81,13 @@ public:
     Status update_materials(const std::vector<Material>& materials);
     VkBuffer vertices() const { return vertices_.handle(); }
     VkBuffer indices() const { return indices_.handle(); }
+    // Uniform buffers of GpuInstance and GpuMaterial, one element every instance_stride() /
+    // material_stride() bytes (the size rounded up to minUniformBufferOffsetAlignment), so
+    // that each draw binds its own element at i x stride, range sizeof(element).
     VkBuffer instances() const { return instances_.handle(); }
     VkBuffer materials() const { return materials_.handle(); }
+    VkDeviceSize instance_stride() const { return instance_stride_; }
+    VkDeviceSize material_stride() const { return material_stride_; }
     // The material's texture in a slot, or the slot's default (white; flat normal).
     GpuTexture texture(uint32_t material, TextureSlot slot) const;
     bool has_texture(uint32_t material, TextureSlot slot) const;
@@ -97,6 +103,7 @@ private:
     Context& context_;
     const Scene& scene_;
     Buffer vertices_, indices_, instances_, materials_;
+    VkDeviceSize instance_stride_ = 0, material_stride_ = 0;
     std::map<std::pair<uint32_t, bool>, Image> textures_;  // (scene image, sRGB) -> image
     std::vector<Sampler> samplers_;                         // one per scene sampler
     Sampler default_sampler_;
