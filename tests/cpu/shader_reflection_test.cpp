@@ -100,8 +100,8 @@ TEST(ShaderReflection, ForwardVertexAndFragmentMergeIntoOneLayout) {
     expect_bindings(*merged,
                     {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                      {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                     {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
-                     {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
+                     {2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},   // the draw's instance
+                     {3, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},   // and material
                      {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                      {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                      {6, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
@@ -125,7 +125,7 @@ TEST(ShaderReflection, ForwardVertexAndFragmentMergeIntoOneLayout) {
                      {24, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},    // KHR_materials_volume's
                      {25, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},   // the transmission background
                     "forward");
-    EXPECT_EQ(merged->push_constant_bytes, 8u);  // uint instance, uint material
+    EXPECT_EQ(merged->push_constant_bytes, 0u);  // the draw's data is bound, not pushed
 }
 
 TEST(ShaderReflection, EveryKindOfDescriptorAndArrays) {
