@@ -2,6 +2,9 @@
 
 #include <dlfcn.h>
 #include <link.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include <algorithm>
 #include <cstring>
@@ -101,6 +104,23 @@ static void apply_common_options(const ContextOptions& options) {
         log(LogLevel::warning, "fault injection is armed: a Vulkan call will fail on purpose");
     }
 }
+
+namespace {
+
+// ContextOptions::keep_freed_memory_on_cpu_device: lavapipe's queue thread allocates its
+// binned scene every frame and frees it after; glibc hands a thread arena's free top back
+// (MADV_DONTNEED) above the trim threshold, and the next frame faults every page in again.
+bool keep_freed_memory() {
+#ifdef __GLIBC__
+    const bool trim = mallopt(M_TRIM_THRESHOLD, 256 << 20) == 1;
+    const bool mmap = mallopt(M_MMAP_THRESHOLD, 32 << 20) == 1;  // glibc's largest on 64-bit
+    return trim && mmap;
+#else
+    return false;
+#endif
+}
+
+}  // namespace
 
 Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) {
     if (options.fence_timeout_ms == 0) return Error{"ContextOptions::fence_timeout_ms must be at least 1 ms"};
@@ -223,6 +243,8 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     } catch (const VulkanError& e) {
         return Error{e.what(), e.result()};
     }
+    if (options.keep_freed_memory_on_cpu_device && c.properties_.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)
+        c.keeps_freed_memory_ = keep_freed_memory();
     return context;
 }
 

@@ -1,8 +1,16 @@
 // GPU context, memory allocator and transfer helpers on lavapipe.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <vector>
+
+#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+#include <malloc.h>
+#define FACET_GLIBC_MALLOC 1  // not a sanitizer's allocator, which answers mallopt itself
+#else
+#define FACET_GLIBC_MALLOC 0
+#endif
 
 #include <facet/gpu/context.h>
 #include <facet/gpu/memory.h>
@@ -39,6 +47,35 @@ TEST(GpuContext, SelectsDeviceByIndexAndByName) {
     auto second = test::create_context(by_name);
     ASSERT_TRUE(second) << second.error().message;
     EXPECT_EQ(second.value()->device_name(), name);
+}
+
+// ContextOptions::keep_freed_memory_on_cpu_device: on lavapipe, after Context::create, a
+// 20 MiB block comes from the heap (not a mapping of its own) and stays there when freed
+// (not trimmed back to the kernel); the option off, or another device, leaves malloc alone.
+TEST(GpuContext, KeepsFreedMemoryOnACpuDevice) {
+    ContextOptions options;
+    options.validation = false;
+    options.keep_freed_memory_on_cpu_device = false;
+    auto untouched = test::create_context(options);
+    ASSERT_TRUE(untouched) << untouched.error().message;
+    EXPECT_FALSE(untouched.value()->keeps_freed_memory());
+    options.keep_freed_memory_on_cpu_device = true;
+    auto context = test::create_context(options);
+    ASSERT_TRUE(context) << context.error().message;
+    const bool cpu = context.value()->properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    EXPECT_EQ(context.value()->keeps_freed_memory(), cpu && FACET_GLIBC_MALLOC);
+#if FACET_GLIBC_MALLOC
+    if (!cpu) return;
+    void* (*volatile allocate)(size_t) = std::malloc;  // not elided with the free below
+    const size_t bytes = 20u << 20;
+    const size_t mapped_before = mallinfo2().hblkhd;
+    void* block = allocate(bytes);
+    ASSERT_NE(block, nullptr);
+    std::memset(block, 1, bytes);
+    EXPECT_EQ(mallinfo2().hblkhd, mapped_before) << "a 20 MiB block was given a mapping of its own";
+    std::free(block);
+    EXPECT_GE(mallinfo2().fordblks, bytes) << "the freed 20 MiB went back to the kernel";
+#endif
 }
 
 TEST(GpuContext, UnknownDeviceIsAClearError) {
