@@ -210,8 +210,23 @@ GpuScene::GpuScene(Context& context, const Scene& scene)
                 slots[s] = {or_throw(fallback.view()), default_sampler_.handle()};
             }
         }
+        // The occlusion and metallic-roughness textures read as one where they can be.
+        const TextureRef& ao = m.occlusion_texture;
+        const TextureRef& mr = m.metallic_roughness_texture;
+        const bool both = has[size_t(TextureSlot::occlusion)] && has[size_t(TextureSlot::metallic_roughness)] &&
+                          ao.sampler == mr.sampler && ao.uv_set == mr.uv_set && ao.uv_transform == mr.uv_transform;
+        const TextureImage* ao_image = both ? &scene.images[size_t(ao.image)] : nullptr;
+        const TextureImage* mr_image = both ? &scene.images[size_t(mr.image)] : nullptr;
+        const bool packed = both && (ao.image == mr.image || (ao_image->width == mr_image->width &&
+                                                              ao_image->height == mr_image->height));
+        if (packed && ao.image != mr.image) {
+            const VkImageView view = or_throw(packed_occlusion_image(uint32_t(ao.image), uint32_t(mr.image)).view());
+            slots[size_t(TextureSlot::metallic_roughness)].view = view;
+            slots[size_t(TextureSlot::occlusion)].view = view;
+        }
         material_textures_.push_back(slots);
         material_has_.push_back(has);
+        occlusion_packed_.push_back(packed);
     }
 }
 
@@ -224,6 +239,26 @@ Image& GpuScene::texture_image(uint32_t image, bool srgb) {
     }
     return it->second;
 }
+
+Image& GpuScene::packed_occlusion_image(uint32_t occlusion, uint32_t metallic_roughness) {
+    const auto key = std::make_pair(occlusion, metallic_roughness);
+    auto it = packed_.find(key);
+    if (it == packed_.end()) {
+        const TextureImage& ao = scene_.images[occlusion];
+        const TextureImage& mr = scene_.images[metallic_roughness];
+        TextureImage packed;
+        packed.name = ao.name + " + " + mr.name;
+        packed.width = mr.width;
+        packed.height = mr.height;
+        packed.rgba = mr.rgba;
+        for (size_t i = 0; i < packed.rgba.size(); i += 4) packed.rgba[i] = ao.rgba[i];  // R: occlusion
+        it = packed_.emplace(key, upload_texture(context_, packed, false)).first;
+        texture_bytes_ += packed.rgba.size() * 4 / 3;
+    }
+    return it->second;
+}
+
+bool GpuScene::occlusion_in_metallic_roughness(uint32_t material) const { return occlusion_packed_.at(material); }
 
 GpuTexture GpuScene::texture(uint32_t material, TextureSlot slot) const {
     return material_textures_.at(material)[size_t(slot)];

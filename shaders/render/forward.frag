@@ -3,7 +3,8 @@
 // the split sum, all composed by facet/shading.glsl (what a host's own shaders call too)
 // for the BRDF model of the frame; this file reads the material and the frame's data.
 // Variants (defines) carry only the features a material uses: HAS_BASE_COLOR_MAP,
-// HAS_METALLIC_ROUGHNESS_MAP, HAS_NORMAL_MAP, HAS_OCCLUSION_MAP, HAS_EMISSIVE_MAP,
+// HAS_METALLIC_ROUGHNESS_MAP, HAS_NORMAL_MAP, HAS_OCCLUSION_MAP (and OCCLUSION_IN_METALLIC_ROUGHNESS:
+// it is R of the metallic-roughness texture), HAS_EMISSIVE_MAP,
 // ALPHA_OPAQUE (alpha written as 1), ALPHA_MASK, ALPHA_BLEND, DOUBLE_SIDED, MIRRORED (the
 // instance's world matrix mirrors: its front faces wind clockwise), UNLIT (points, lines and
 // KHR_materials_unlit: base colour x vertex colour + emissive, which the loader clears for
@@ -174,7 +175,11 @@ Surface surface_at(MaterialData m) {
     metallic *= mr.b;
 #endif
     float occlusion = m.extra.z;
-#ifdef HAS_OCCLUSION_MAP
+#if defined(HAS_OCCLUSION_MAP) && defined(OCCLUSION_IN_METALLIC_ROUGHNESS)
+    // The occlusion in R of the metallic-roughness texel already read (GpuScene packs the
+    // two when they share coordinates and sampler): one fetch fewer.
+    occlusion *= 1.0 + m.factors.w * (mr.r - 1.0);
+#elif defined(HAS_OCCLUSION_MAP)
     occlusion *= 1.0 + m.factors.w * (texture(occlusion_map, OCCLUSION_UV).r - 1.0);
 #endif
     Surface s;

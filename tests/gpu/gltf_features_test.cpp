@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include <facet/render/gpu_scene.h>
 #include <facet/render/render_job.h>
 #include <facet/scene/gltf_loader.h>
 #include "support/gltf_files.h"
@@ -776,6 +777,77 @@ TEST_F(GltfFeaturesTest, SparseMorphedAndSkinnedQuadsLandWhereComputed) {
         EXPECT_GT(inside, 300) << names[f];
         EXPECT_GT(outside, 1000) << names[f];
         EXPECT_EQ(wrong, 0) << names[f];
+    }
+}
+
+// An occlusion texture and a metallic-roughness texture of the same size, coordinates and
+// sampler are packed into one image (GpuScene: R from the occlusion), and the frame is
+// what it is with the two read apart (the occlusion through a second, identical sampler,
+// which keeps them apart): 4x4 textures of distinct texels whose metallic-roughness R is
+// not the occlusion, under the sun sky, where the occlusion darkens the environment's light.
+// Likewise one image in both slots (an ORM texture) read once.
+TEST_F(GltfFeaturesTest, OcclusionPackedWithMetallicRoughnessRendersAsTwoTextures) {
+    std::vector<unsigned char> mr(4 * 4 * 4), ao(4 * 4 * 4);
+    for (int i = 0; i < 16; ++i) {
+        const unsigned char rgba_mr[] = {static_cast<unsigned char>(250 - 11 * i), static_cast<unsigned char>(60 + 12 * i),
+                                         static_cast<unsigned char>(i % 2 ? 255 : 0), 255};
+        const unsigned char rgba_ao[] = {static_cast<unsigned char>(40 + 13 * i), 200, 100, 255};
+        std::copy(rgba_mr, rgba_mr + 4, &mr[4 * i]);
+        std::copy(rgba_ao, rgba_ao + 4, &ao[4 * i]);
+    }
+    ASSERT_TRUE(write_png(dir.file("mr.png"), 4, 4, mr.data()));
+    ASSERT_TRUE(write_png(dir.file("ao.png"), 4, 4, ao.data()));
+    GltfBuilder b = lit_quad_builder();
+    const std::string attributes = R"("POSITION": 0, "TEXCOORD_0": 2, "NORMAL": 3)";
+    auto file = [&](const std::string& name, int occlusion_texture, bool with_occlusion) {
+        std::string material = R"({"pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.6, 0.4, 1],
+            "metallicRoughnessTexture": {"index": 0}})";
+        if (with_occlusion)
+            material += R"(, "occlusionTexture": {"index": )" + std::to_string(occlusion_texture) + "}";
+        material += "}";
+        return b.write(dir, name, mesh_file(attributes, 1, material) + R"(,
+  "textures": [{"source": 0, "sampler": 0}, {"source": 1, "sampler": 0}, {"source": 1, "sampler": 1},
+               {"source": 0, "sampler": 1}],
+  "images": [{"uri": "mr.png"}, {"uri": "ao.png"}],
+  "samplers": [{"magFilter": 9729, "minFilter": 9987}, {"magFilter": 9729, "minFilter": 9987}])");
+    };
+    struct Case {
+        const char* name;
+        int occlusion;  // texture index
+        bool packed;
+    };
+    const Case cases[] = {{"packed", 1, true}, {"apart", 2, false}, {"orm", 0, true}, {"orm_apart", 3, false}};
+    std::vector<RenderedImages> frames;
+    for (const Case& c : cases) {
+        const std::string path = file(c.name, c.occlusion, true);
+        Result<Scene> scene = load_gltf(path);
+        ASSERT_TRUE(scene) << scene.error().message;
+        auto gpu = GpuScene::create(ctx(), *scene);
+        ASSERT_TRUE(gpu) << gpu.error().message;
+        EXPECT_EQ((*gpu)->occlusion_in_metallic_roughness(0), c.packed) << c.name;
+        frames.push_back(render(path, job("builtin:sky"), false));
+        ASSERT_EQ(frames.back().hdr.size(), kSize * kSize * 4) << c.name;
+    }
+    const RenderedImages plain = render(file("no_occlusion", 0, false), job("builtin:sky"), false);
+    ASSERT_EQ(plain.hdr.size(), kSize * kSize * 4);
+    // Packed against apart: the same to float rounding; and the occlusion seen (a frame
+    // without it is brighter by far more than that).
+    for (size_t pair = 0; pair < 2; ++pair) {
+        const std::vector<float>& one = frames[2 * pair].hdr;
+        const std::vector<float>& two = frames[2 * pair + 1].hdr;
+        double worst = 0.0, darkened = 0.0;
+        int covered = 0;
+        for (size_t i = 0; i < one.size(); i += 4) {
+            if (two[i + 3] <= 0.0f) continue;
+            ++covered;
+            for (size_t c = 0; c < 3; ++c) {
+                worst = std::max(worst, std::abs(double(one[i + c]) - two[i + c]) / std::max(double(two[i + c]), 1e-3));
+                darkened = std::max(darkened, (double(plain.hdr[i + c]) - two[i + c]) / std::max(double(two[i + c]), 1e-3));
+            }
+        }
+        EXPECT_GT(covered, int(kSize * kSize / 4)) << cases[2 * pair].name;
+        EXPECT_LT(worst, 1e-5) << cases[2 * pair].name << " against " << cases[2 * pair + 1].name;
+        EXPECT_GT(darkened, 0.1) << cases[2 * pair].name << ": the occlusion is not seen";
     }
 }
 

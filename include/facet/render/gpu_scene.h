@@ -91,6 +91,11 @@ public:
     // The material's texture in a slot, or the slot's default (white; flat normal).
     GpuTexture texture(uint32_t material, TextureSlot slot) const;
     bool has_texture(uint32_t material, TextureSlot slot) const;
+    // Whether the material's occlusion is R of its metallic-roughness texture (both slots
+    // then hold that texture): its two textures are one image, or were packed into one
+    // (R from the occlusion, G and B from the metallic-roughness image) because they share
+    // coordinates, transform, sampler and size, so that a fragment reads one texel for both.
+    bool occlusion_in_metallic_roughness(uint32_t material) const;
     // Black 1x1 cube and 2D images for the IBL bindings of a scene without an environment.
     VkImageView black_cube() const { return black_cube_view_; }
     VkImageView black_2d() const { return black_2d_view_; }
@@ -100,17 +105,20 @@ public:
 private:
     GpuScene(Context& context, const Scene& scene);  // throws internally; create() returns the Error
     Image& texture_image(uint32_t image, bool srgb);
+    Image& packed_occlusion_image(uint32_t occlusion, uint32_t metallic_roughness);
     Context& context_;
     const Scene& scene_;
     Buffer vertices_, indices_, instances_, materials_;
     VkDeviceSize instance_stride_ = 0, material_stride_ = 0;
     std::map<std::pair<uint32_t, bool>, Image> textures_;  // (scene image, sRGB) -> image
+    std::map<std::pair<uint32_t, uint32_t>, Image> packed_;  // (occlusion, metallic-roughness image) -> packed
     std::vector<Sampler> samplers_;                         // one per scene sampler
     Sampler default_sampler_;
     Image white_srgb_, white_linear_, flat_normal_, black_cube_, black_2d_;
     VkImageView black_cube_view_ = VK_NULL_HANDLE, black_2d_view_ = VK_NULL_HANDLE;
     std::vector<std::array<GpuTexture, size_t(TextureSlot::count)>> material_textures_;
     std::vector<std::array<bool, size_t(TextureSlot::count)>> material_has_;
+    std::vector<bool> occlusion_packed_;
     uint64_t texture_bytes_ = 0;
 };
 
