@@ -20,8 +20,8 @@ layout(binding = 1, std430) readonly buffer Lights { PackedLight lights[]; };
 // The draw's instance and material: one element each, bound per draw at its offset
 // (GpuScene's strides) as uniform blocks, not indexed in a storage buffer: a CPU device
 // (lavapipe) loads a storage buffer one lane at a time, a uniform block at an offset that
-// is the same for every lane once for all of them (the forward pass 5-10% faster, its
-// floor 13%: README, Speed).
+// is the same for every lane once for all of them (a few percent of the forward pass:
+// README, Speed).
 struct InstanceData {
     mat4 world;
     mat4 normal_matrix;  // inverse transpose of world's 3x3, in a mat4 for alignment
