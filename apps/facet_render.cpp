@@ -102,6 +102,10 @@ std::string describe(const Options& o, const RenderSession& session, const Rende
             j.begin_object().value("group", g.group).value("error", g.error).end_object();
         j.end_array();
     }
+    // The groups whose materials read along R although the method bends the lookup.
+    j.begin_array("unbent_groups");
+    for (const std::string& g : shading.unbent_groups) j.value({}, g);
+    j.end_array();
     j.end_object();
     j.value("lights", uint32_t(f.lights.size()));
     j.begin_array("warnings");  // what the model's loader met but does not draw (Scene::warnings)

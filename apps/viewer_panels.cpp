@@ -1,5 +1,6 @@
 #include "viewer_panels.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 
@@ -137,8 +138,11 @@ void draw_panels(ViewerControls& c) {
         ImGui::TextColored(within ? ImVec4(0.6f, 1.0f, 0.6f, 1.0f) : ImVec4(1.0f, 0.7f, 0.3f, 1.0f),
                            "predicted error %.1f%% (target %.1f%%), worst: %s", 100 * *c.shading.predicted_error,
                            100 * c.shading.target_error, c.shading.predicted_worst_group.c_str());
-        for (const GroupErrorPrediction& g : c.shading.predicted_groups)
-            ImGui::Text("  %-30s %5.1f%%", g.group.c_str(), 100 * g.error);
+        for (const GroupErrorPrediction& g : c.shading.predicted_groups) {
+            const auto& unbent = c.shading.unbent_groups;
+            const bool along_r = std::find(unbent.begin(), unbent.end(), g.group) != unbent.end();
+            ImGui::Text("  %-30s %5.1f%%%s", g.group.c_str(), 100 * g.error, along_r ? "  (along R)" : "");
+        }
     } else {
         ImGui::TextDisabled("predicted error: none (no environment texels to compare with)");
     }

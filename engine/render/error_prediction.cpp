@@ -167,6 +167,7 @@ Result<ShadingPrediction> predict_shading_errors(RenderSession::State& s, std::s
 
     auto render = [&](ShadingMethod method) -> Result<std::vector<float>> {
         f.dominant_direction = bends_lookup(method);
+        f.dominant_groups.fill(true);  // the method's own error in every group
         f.environment_lights = shades_lights(method) ? s.baked->lights() : std::vector<DiskLight>{};
         f.environment_light_level = s.baked->metadata().light_split_level;
         f.views.clear();

@@ -14,6 +14,7 @@
 #include <facet/gpu/pipeline.h>
 #include <facet/graph/graph_run.h>
 #include <facet/render/gpu_scene.h>
+#include <facet/render/shading_method.h>
 #include <facet/render/specular_lobes.h>
 #include <facet/gpu/transfer.h>
 #include <facet/shader/program_cache.h>
@@ -202,7 +203,11 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     define_if(ibl, "USE_IBL");
     define_if(settings.brdf == BrdfModel::thesis, "BRDF_THESIS");
     define_if(ibl && settings.multiscatter, "MULTISCATTER");
-    define_if(ibl && settings.dominant_direction, "DOMINANT_DIRECTION");
+    // The fitted lookups where the material reaches a group that needs them.
+    bool bend = false;
+    const std::array<bool, 8> reached = material_shading_groups(m);
+    for (size_t g = 0; g < reached.size(); ++g) bend = bend || (reached[g] && settings.dominant_groups[g]);
+    define_if(ibl && settings.dominant_direction && bend, "DOMINANT_DIRECTION");
     define_if(settings.flat_floor, "FLAT_FLOOR");
     defines.insert(defines.end(), disk_defines.begin(), disk_defines.end());
     defines.push_back({"VIEW", std::to_string(int(view))});

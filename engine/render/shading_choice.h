@@ -4,6 +4,7 @@
 // automatic choice, made in two steps: before the bake (extract lights, wide regions
 // included) and after it, among the methods that bake serves, by their predicted error
 // (render/error_prediction.h) and cost.
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <span>
@@ -48,6 +49,23 @@ struct CandidatePick {
 // target 3%"). A pure function of its inputs (the choice is deterministic). Empty
 // `candidates`: UsageError.
 CandidatePick choose_shading(std::span<const ShadingCandidate> candidates, double target_error);
+
+// The lookup per group, once a bending method (lights_dominant, dominant) is chosen
+// automatically: a group reached by the probe (`reached`) whose error with the same method
+// without the bend (`plain`: lights, split_sum) is within `target_error` (the session
+// passes three quarters of its target, a margin for the probe's prediction) reads along R,
+// which costs a third of a split-sum frame less (three cube reads and the fitted table
+// fewer); the others bend. `error` is each group's predicted error with the lookup it
+// uses, `worst` and `worst_group` their largest over the reached groups (NaN and -1 when
+// none was measured). A pure function (the choice is deterministic).
+struct GroupBends {
+    std::array<bool, 8> bend{true, true, true, true, true, true, true, true};
+    std::array<double, 8> error{};
+    double worst = 0;
+    int worst_group = -1;
+};
+GroupBends choose_group_bends(const std::array<double, 8>& bent, const std::array<double, 8>& plain,
+                              const std::array<bool, 8>& reached, double target_error);
 
 // Without a prediction (a saved bake, no environment texels): after the bake, `lights`
 // disks found holding `power_fraction` of the environment's power.

@@ -1,5 +1,9 @@
 #include <facet/render/shading_method.h>
 
+#include <algorithm>
+
+#include <facet/scene/scene.h>
+
 namespace facet {
 namespace {
 constexpr const char* kShadingMethodNames[] = {"auto", "split-sum", "dominant", "lights", "lights+dominant"};
@@ -14,5 +18,24 @@ std::optional<ShadingMethod> parse_shading_method(std::string_view name) {
 }
 
 const char* shading_method_names() { return "auto, split-sum, dominant, lights, lights+dominant"; }
+
+}  // namespace facet
+
+namespace facet {
+
+std::array<bool, 8> material_shading_groups(const Material& m) {
+    // The bands of facet-bench accuracy's measure (render/error_prediction.cpp).
+    constexpr float band_lo[4] = {0.2f, 0.4f, 0.6f, 0.8f}, band_hi[4] = {0.4f, 0.6f, 0.8f, 1.0001f};
+    const bool textured = m.metallic_roughness_texture.valid();
+    const float hi = std::max(m.roughness, band_lo[0]), lo = std::max(textured ? 0.0f : m.roughness, band_lo[0]);
+    const bool metal = m.metallic >= 0.5f, dielectric = m.metallic < 0.5f || textured;
+    std::array<bool, 8> groups{};
+    for (size_t band = 0; band < 4; ++band) {
+        if (!(lo < band_hi[band] && hi >= band_lo[band])) continue;
+        groups[2 * band] = dielectric;
+        groups[2 * band + 1] = metal;
+    }
+    return groups;
+}
 
 }  // namespace facet

@@ -7,6 +7,8 @@
 #include <limits>
 #include <vector>
 
+#include <facet/render/shading_method.h>
+#include <facet/scene/scene.h>
 #include "render/shading_choice.h"
 
 namespace facet {
@@ -20,6 +22,63 @@ TEST(ShadingChoice, CostOrderIsSplitSumDominantLightsBoth) {
     EXPECT_LT(shading_cost_rank(M::dominant), shading_cost_rank(M::lights));
     EXPECT_LT(shading_cost_rank(M::lights), shading_cost_rank(M::lights_dominant));
     EXPECT_THROW(shading_cost_rank(M::automatic), UsageError);
+}
+
+// Per group, once a bending method is chosen: a reached group whose plain lookup is within
+// the threshold reads along R and carries the plain lookup's error; unreached, unmeasured
+// (NaN) or over-threshold groups bend; the worst is over the reached groups' chosen errors.
+TEST(ShadingChoice, GroupsWithinTheTargetReadAlongR) {
+    const std::array<double, 8> bent = {0.010, 0.020, 0.011, 0.021, 0.012, 0.022, 0.013, 0.023};
+    const std::array<double, 8> plain = {0.015, 0.060, 0.0225, 0.040, nan, 0.010, 0.001, 0.002};
+    std::array<bool, 8> reached;
+    reached.fill(true);
+    reached[7] = false;
+    const GroupBends b = choose_group_bends(bent, plain, reached, 0.0225);
+    const std::array<bool, 8> expected = {false, true, false, true, true, false, false, true};
+    EXPECT_EQ(b.bend, expected);
+    EXPECT_DOUBLE_EQ(b.error[0], 0.015);  // along R: the plain lookup's
+    EXPECT_DOUBLE_EQ(b.error[1], 0.020);  // bent: the bent lookup's
+    EXPECT_DOUBLE_EQ(b.error[2], 0.0225); // exactly at the threshold is within
+    EXPECT_DOUBLE_EQ(b.error[4], 0.012);  // NaN is never within
+    EXPECT_DOUBLE_EQ(b.worst, 0.0225);    // group 7 is not reached: its 0.023 does not count
+    EXPECT_EQ(b.worst_group, 2);
+    // Nothing measured: no worst.
+    std::array<double, 8> none;
+    none.fill(nan);
+    const GroupBends n = choose_group_bends(none, none, reached, 0.03);
+    EXPECT_TRUE(std::isnan(n.worst));
+    EXPECT_EQ(n.worst_group, -1);
+    // Deterministic.
+    EXPECT_EQ(choose_group_bends(bent, plain, reached, 0.0225).bend, b.bend);
+}
+
+// The groups a material can fall in: its band and class; a metallic-roughness texture
+// scales both down, so every band up to its factor and the dielectric class too; under 0.2
+// the first band.
+TEST(ShadingChoice, MaterialGroupsFollowTheFactorsAndTheirTexture) {
+    Material m;
+    m.roughness = 0.5f;
+    m.metallic = 1.0f;
+    std::array<bool, 8> expected{};
+    expected[3] = true;  // [0.4,0.6) metal
+    EXPECT_EQ(material_shading_groups(m), expected);
+    m.metallic = 0.49f;
+    expected = {};
+    expected[2] = true;  // [0.4,0.6) dielectric
+    EXPECT_EQ(material_shading_groups(m), expected);
+    m.roughness = 0.05f;
+    expected = {};
+    expected[0] = true;  // under 0.2: the first band
+    EXPECT_EQ(material_shading_groups(m), expected);
+    m.roughness = 1.0f;
+    expected = {};
+    expected[6] = true;  // 1 is in [0.8,1.0]
+    EXPECT_EQ(material_shading_groups(m), expected);
+    m.roughness = 0.7f;
+    m.metallic = 0.5f;
+    m.metallic_roughness_texture.image = 0;
+    expected = {true, true, true, true, true, true, false, false};  // every band up to 0.7, both classes
+    EXPECT_EQ(material_shading_groups(m), expected);
 }
 
 TEST(ShadingChoice, CheapestWithinTheTargetWins) {

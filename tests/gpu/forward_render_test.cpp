@@ -115,6 +115,55 @@ TEST_F(ForwardRenderTest, CreateStoppedMidBakeIsCancelled) {
     EXPECT_EQ(images.hdr.size(), 64u * 64u * 4u);
 }
 
+// FrameSettings::dominant_groups: with the fitted lookups named and the dielectric groups
+// cleared, every dielectric sphere of builtin:spheres is the split sum's pixel for pixel
+// (its pipeline reads along R) and every metal one the fitted lookups' (the metallic view
+// says which is which); the two methods differ on both, so the test can tell.
+TEST_F(ForwardRenderTest, FittedLookupsOnlyWhereTheirGroupsBend) {
+    auto frame = [&](ShadingMethod method, bool dielectrics_bend) {
+        RenderJob job = small_job("builtin:spheres", "builtin:sky");
+        job.frame.width = 192;
+        job.frame.height = 108;
+        job.frame.skybox = false;
+        job.frame.views = {View::metallic};
+        job.frame.samples = 1;  // no edge pixel mixing two materials or a material and the background
+        job.shading = method;
+        for (size_t g = 0; g < 8; g += 2) job.frame.dominant_groups[g] = dielectrics_bend;
+        return render(job);
+    };
+    const RenderedImages bent = frame(ShadingMethod::dominant, true);
+    const RenderedImages mixed = frame(ShadingMethod::dominant, false);
+    const RenderedImages plain = frame(ShadingMethod::split_sum, true);
+    ASSERT_EQ(mixed.views.size(), 1u);
+    const std::vector<float>& metallic = mixed.views[0].second;
+    ASSERT_EQ(metallic.size(), mixed.hdr.size());
+    ASSERT_EQ(bent.hdr.size(), mixed.hdr.size());
+    ASSERT_EQ(plain.hdr.size(), mixed.hdr.size());
+    int dielectric = 0, metal = 0, dielectric_apart = 0, metal_apart = 0, wrong = 0;
+    for (size_t i = 0; i < mixed.hdr.size(); i += 4) {
+        if (mixed.hdr[i + 3] <= 0.0f) continue;
+        const bool is_metal = metallic[i] >= 0.5f;
+        const std::vector<float>& same = is_metal ? bent.hdr : plain.hdr;
+        const std::vector<float>& other = is_metal ? plain.hdr : bent.hdr;
+        bool equal = true, apart = false;
+        for (size_t c = 0; c < 3; ++c) {
+            equal = equal && mixed.hdr[i + c] == same[i + c];
+            apart = apart || std::abs(mixed.hdr[i + c] - other[i + c]) > 1e-3f * std::max(other[i + c], 1e-3f);
+        }
+        wrong += !equal;
+        if (!equal && wrong <= 3)
+            ADD_FAILURE() << "pixel " << i / 4 << (is_metal ? " (metal): " : " (dielectric): ") << mixed.hdr[i]
+                          << " instead of " << same[i];
+        (is_metal ? metal : dielectric) += 1;
+        (is_metal ? metal_apart : dielectric_apart) += apart;
+    }
+    EXPECT_EQ(wrong, 0) << dielectric << " dielectric, " << metal << " metal";
+    EXPECT_GT(dielectric, 500);
+    EXPECT_GT(metal, 500);
+    EXPECT_GT(dielectric_apart, dielectric / 4) << "the bend changes too few dielectric pixels to tell";
+    EXPECT_GT(metal_apart, metal / 4) << "the bend changes too few metal pixels to tell";
+}
+
 // The benchmark's floor (FrameSettings::flat_floor): every covered pixel is the material's
 // base colour factor, whatever the light; the background stays empty.
 TEST_F(ForwardRenderTest, FlatFloorWritesTheBaseColourFactor) {

@@ -5,6 +5,7 @@
 // under it, the display transform (render/tonemap.h) and one single-sample pass per
 // component view (AOV). add_passes() composes them into the programs' frame. An engine
 // can stop at linear HDR: add_forward_pass() alone.
+#include <array>
 #include <memory>
 #include <optional>
 #include <set>
@@ -49,6 +50,11 @@ struct FrameSettings {
     BrdfModel brdf = BrdfModel::gltf;  // design.md "BRDF models": lights, environment, views
     bool multiscatter = false;       // energy compensation (needs IBL: LUT and irradiance)
     bool dominant_direction = false; // three lookups fitted to the specular lobe (render/specular_lobes.h) instead of one along R
+    // With dominant_direction, the groups of issue 13's measure (index 2 x band + metal; bands
+    // of roughness 0.2 wide from 0.2, metal: metallic >= 0.5) whose materials bend the lookup:
+    // a material reaching none of them (material_shading_groups) reads along R. The automatic
+    // choice clears the groups where the plain lookup is predicted within the target.
+    std::array<bool, 8> dominant_groups{true, true, true, true, true, true, true, true};
     std::vector<Light> lights;       // every punctual light of the frame
     // Bright regions taken out of the environment before the bake (light extraction),
     // shaded as disk lights with the full BRDF; the skybox shows them again.

@@ -12,6 +12,7 @@
 //   the exact integral, and the cheapest whose worst group of issue 13's measure is
 //   within the target error wins (the most accurate when none is).
 // Cost order (the forward pass's work): split_sum < dominant < lights < lights_dominant.
+#include <array>
 #include <optional>
 #include <vector>
 #include <string>
@@ -52,6 +53,17 @@ struct ShadingChoice {
     std::optional<double> predicted_error;
     std::string predicted_worst_group;
     std::vector<GroupErrorPrediction> predicted_groups;
+    // lights_dominant or dominant chosen automatically: the groups whose materials read
+    // along R instead (the cheaper method predicted within the target there); the
+    // predicted errors above are then per group those of the lookup each group uses.
+    std::vector<std::string> unbent_groups;
 };
+
+struct Material;
+// The groups of issue 13's measure (index 2 x roughness band + metal) a material's pixels
+// can fall in: its roughness factor's band, or every band up to it where a
+// metallic-roughness texture scales it; metal where metallic >= 0.5, dielectric where it is
+// below or a texture can scale it below. Roughness under 0.2 counts as the first band.
+std::array<bool, 8> material_shading_groups(const Material& material);
 
 }  // namespace facet
