@@ -30,7 +30,7 @@ cli::Parser make_parser() {
         .option("--specular", "METHOD", "automatic (default: hybrid below roughness 0.5, convolve above),\n"
                                         "                          importance, filtered, convolve, mips, hybrid")
         .option("--samples", "N", "GGX samples per texel for importance/filtered levels (default 1024)")
-        .option("--hybrid-samples", "N", "filtered samples of the clamped environment per hybrid texel (default 96)")
+        .option("--hybrid-samples", "N", "filtered samples of the clamped environment per hybrid texel (default 128)")
         .option("--size", "N", "cube face size (default: input height / 2)")
         .option("--levels", "N", "specular levels, roughness m/(N-1) (default 6)")
         .option("--irradiance-size", "N", "irradiance face size (default 32)")
