@@ -10,6 +10,7 @@
 #include <facet/graph/render_graph.h>
 #include <facet/reference/final_image_accuracy.h>
 #include <facet/render/gpu_scene.h>
+#include <facet/render/shading_method.h>
 #include <facet/scene/builtin_scenes.h>
 #include <facet/scene/scene_needs.h>
 #include "core/guarded.h"
@@ -20,7 +21,7 @@ namespace {
 
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 constexpr double inf = std::numeric_limits<double>::infinity();
-constexpr double band_lo[4] = {0.2, 0.4, 0.6, 0.8}, band_hi[4] = {0.4, 0.6, 0.8, 1.0001};
+constexpr float smoothest = 0.2f;  // the measure's smoothest roughness (its first band's lower edge)
 
 // The environment the truth sums: box-filtered by the largest power of two that keeps it
 // at least `width` wide. A texel of 256 is 1.4 degrees, narrower than any lobe of
@@ -99,7 +100,7 @@ Scene probe_scene(const Scene& scene) {
     std::vector<std::pair<float, float>> pairs;
     for (const Material& m : scene.materials) {
         textured = textured || m.metallic_roughness_texture.valid();
-        if (m.roughness >= float(band_lo[0])) pairs.push_back({m.roughness, m.metallic});
+        if (m.roughness >= smoothest) pairs.push_back({m.roughness, m.metallic});
     }
     std::sort(pairs.begin(), pairs.end());
     pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
@@ -119,8 +120,8 @@ Scene probe_scene(const Scene& scene) {
         m_lo = std::min(m_lo, scaled ? 0.0f : m.metallic);
         m_hi = std::max(m_hi, m.metallic);
     }
-    r_lo = std::max({r_lo, needs.min_roughness, float(band_lo[0])});
-    if (!(r_hi >= r_lo)) r_lo = float(band_lo[0]), r_hi = 1, m_lo = 0, m_hi = 1;  // nothing the measure sees
+    r_lo = std::max({r_lo, needs.min_roughness, smoothest});
+    if (!(r_hi >= r_lo)) r_lo = smoothest, r_hi = 1, m_lo = 0, m_hi = 1;  // nothing the measure sees
     if (!(m_hi >= m_lo)) m_lo = 0, m_hi = 1;
     if (!needs.diffuse) m_lo = m_hi = 1;
     const SpheresGrid grid;
@@ -135,10 +136,11 @@ Scene probe_scene(const Scene& scene) {
 
 std::array<bool, 8> material_groups(const Scene& scene) {
     std::array<bool, 8> reached{};
-    for (const Material& m : scene.materials)
-        for (int band = 0; band < 4; ++band)
-            if (m.roughness >= band_lo[band] && m.roughness < band_hi[band])
-                reached[size_t(2 * band + (m.metallic >= 0.5f ? 1 : 0))] = true;
+    for (const Material& m : scene.materials) {
+        if (m.roughness < smoothest) continue;  // not in the measure (material_shading_groups counts it in the first band)
+        const std::array<bool, 8> groups = material_shading_groups(m);
+        for (size_t g = 0; g < groups.size(); ++g) reached[g] = reached[g] || groups[g];
+    }
     return reached;
 }
 

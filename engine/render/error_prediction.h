@@ -34,7 +34,8 @@ struct PredictionSettings {
 // irradiance). A scene smoother than 0.2 everywhere gets the measure's whole range.
 Scene probe_scene(const Scene& scene);
 // The groups (band-major as test::FinalImageAccuracy::groups: 2 * band + metal) that a
-// scene's materials fall in (factors only; roughness below 0.2 in none).
+// scene's materials fall in (material_shading_groups of each; a roughness factor below 0.2
+// in none).
 std::array<bool, 8> material_groups(const Scene& scene);
 
 struct MethodPrediction {

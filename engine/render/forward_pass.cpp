@@ -182,8 +182,7 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
             defines.push_back({uvs[t], set});
         }
     }
-    define_if(scene.has_texture(material, TextureSlot::occlusion) && scene.occlusion_in_metallic_roughness(material),
-              "OCCLUSION_IN_METALLIC_ROUGHNESS");
+    define_if(scene.occlusion_in_metallic_roughness(material), "OCCLUSION_IN_METALLIC_ROUGHNESS");
     define_if(m.alpha_mode == AlphaMode::opaque, "ALPHA_OPAQUE");
     define_if(m.alpha_mode == AlphaMode::mask, "ALPHA_MASK");
     const bool blend = m.alpha_mode == AlphaMode::blend && view == View::final_color;

@@ -197,10 +197,8 @@ Status choose_session_shading(RenderSession::State& s, const SayFn& say) {
                                                                   0.75 * r.choice.target_error);
             std::string unbent;
             for (size_t g = 0; g < 8; ++g)
-                if (groups[g] && !bends.bend[g]) {
-                    r.choice.unbent_groups.push_back(group_label(g));
-                    unbent += (unbent.empty() ? "" : ", ") + group_label(g);
-                }
+                if (groups[g] && !bends.bend[g]) r.choice.unbent_groups.push_back(group_label(g));
+            for (const std::string& g : r.choice.unbent_groups) unbent += (unbent.empty() ? "" : ", ") + g;
             if (!unbent.empty())
                 r.choice.reason += "; along R where " + std::string(shading_method_name(plain)) +
                                    " is within 3/4 of the target: " + unbent;

@@ -24,7 +24,8 @@ const char* shading_method_names() { return "auto, split-sum, dominant, lights, 
 namespace facet {
 
 std::array<bool, 8> material_shading_groups(const Material& m) {
-    // The bands of facet-bench accuracy's measure (render/error_prediction.cpp).
+    // The bands of facet-bench accuracy's measure (reference/final_image_accuracy.h); the
+    // probe's groups (render/error_prediction.cpp) and the session's group labels follow them.
     constexpr float band_lo[4] = {0.2f, 0.4f, 0.6f, 0.8f}, band_hi[4] = {0.4f, 0.6f, 0.8f, 1.0001f};
     const bool textured = m.metallic_roughness_texture.valid();
     const float hi = std::max(m.roughness, band_lo[0]), lo = std::max(textured ? 0.0f : m.roughness, band_lo[0]);
