@@ -28,7 +28,7 @@ std::vector<std::string> bake_warnings(const EnvironmentSource& analysed, const 
 // What a bake makes of the same input and settings: bumped with every change to the
 // passes or their rules (the LUT's channels, light extraction, the split level), so that
 // a bake cache never hands out an entry made by older code of the same version number.
-constexpr const char* kBakeRevision = "bake revision 6: hybrid specular levels below roughness 0.5";
+constexpr const char* kBakeRevision = "bake revision 7: the irradiance of the whole environment, lights in it";
 
 std::string bake_key(const EnvironmentSource& s, const BakeSettings& b) {
     const IblSettings& o = b.ibl;

@@ -286,6 +286,9 @@ Result<BakedEnvironment> load_dir(Context& context, const std::string& dir, cons
         l.power_fraction = r.number("power_fraction");
         A::lights(out).push_back(l);
     }
+    // The renderers shade only the disks' specular: their diffuse must be in the irradiance.
+    if (!A::lights(out).empty() && !lights.optional("irradiance"))
+        throw Missing{"lights.irradiance (a bake older than the irradiance of the whole environment must be made again)"};
     if (const JsonValue* passes = root.optional("passes"); passes && passes->is_array())
         for (const JsonValue& p : passes->items()) {
             const Reader r{p, "passes[]."};

@@ -131,6 +131,7 @@ std::string bake_json(const BakedEnvironment& b) {
     }
     j.begin_object("lights")
         .value("split_level", d.light_split_level)
+        .value("irradiance", "the whole environment (the disks' diffuse is in the irradiance cube)")
         .value("extracted_power_fraction", d.extracted_power_fraction)
         .begin_array("disks");
     for (const DiskLight& l : b.lights()) {

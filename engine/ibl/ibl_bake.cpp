@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <optional>
 #include <span>
 
 #include <facet/gpu/context.h>
@@ -181,7 +182,7 @@ Result<ImageHandle> target_or_new(RenderGraph& graph, ImageHandle target, const 
 
 Result<IblImages> IblBake::add_passes(RenderGraph& graph, const EnvironmentSource& source, const IblSettings& s,
                                       const SpecularSplit& split, const IblTargets& targets) {
-    if (Status fits = check_ibl_fits(context_, source, s, split.whole && split.level > 0); !fits) return fits.error();
+    if (Status fits = check_ibl_fits(context_, source, s, split.whole != nullptr); !fits) return fits.error();
     if (!cube_sampler_) {
         auto equirect = Sampler::create(context_, VK_FILTER_LINEAR, false, true, "equirect sampler");
         if (!equirect) return equirect.error();
@@ -210,22 +211,30 @@ Result<IblImages> IblBake::add_passes(RenderGraph& graph, const EnvironmentSourc
     if (!main) return main.error();
     out.equirect = main->equirect;
     out.cube = main->cube;
+    // The whole environment, where lights were taken out: the irradiance and the smooth
+    // specular levels come from it (the diffuse lobe integrates the lights exactly; the
+    // renderers shade the disks' specular alone).
+    std::optional<Uploaded> whole;
+    if (split.whole) {
+        if (split.whole->width != source.width || split.whole->height != source.height)
+            return Error{"light extraction: the whole environment and the map without lights differ in size"};
+        auto added = add_environment(graph, context_, programs_, *equirect_sampler_, *split.whole, s.cube_size,
+                                     whole_staging_, "whole ", {}, level0_written && extracted ? &specular : nullptr);
+        if (!added) return added.error();
+        whole = *added;
+    }
     if (s.want_irradiance) {
         auto target = target_or_new(graph, targets.irradiance, "irradiance", environment_cube_desc(s.irradiance.size, 1));
         if (!target) return target.error();
-        auto irradiance = add_irradiance_passes(graph, programs_, *cube_sampler_, out.cube, *target, s.irradiance,
-                                                &out.sh9, out.equirect);
+        auto irradiance = add_irradiance_passes(graph, programs_, *cube_sampler_, whole ? whole->cube : out.cube,
+                                                *target, s.irradiance, &out.sh9,
+                                                whole ? whole->equirect : out.equirect);
         if (!irradiance) return irradiance.error();
         out.irradiance = *irradiance;
     }
     if (s.want_specular) {
         SpecularSettings rough = s.specular;
         if (extracted) {
-            if (split.whole->width != source.width || split.whole->height != source.height)
-                return Error{"light extraction: the whole environment and the map without lights differ in size"};
-            auto whole = add_environment(graph, context_, programs_, *equirect_sampler_, *split.whole, s.cube_size,
-                                         whole_staging_, "whole ", {}, level0_written ? &specular : nullptr);
-            if (!whole) return whole.error();
             SpecularSettings smooth = s.specular;
             smooth.end_level = split.level;
             auto written = add_specular_passes(graph, programs_, *cube_sampler_, whole->cube, specular, smooth,

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -14,6 +15,7 @@
 #include "render/light_data.h"
 #include <facet/ibl/light_extraction.h>
 #include <facet/scene/scene.h>
+#include <facet/shader/compiler.h>
 #include "core/guarded.h"
 
 namespace facet::forward {
@@ -35,11 +37,19 @@ struct SkyConstants {
     glm::mat4 inverse_view_projection;
     float lod;
     float intensity;
-    uint32_t disks;
 };
-static_assert(offsetof(SkyConstants, lod) == 64 && offsetof(SkyConstants, intensity) == 68 &&
-                  offsetof(SkyConstants, disks) == 72,
-              "Sky in skybox.comp");
+static_assert(offsetof(SkyConstants, lod) == 64 && offsetof(SkyConstants, intensity) == 68, "Sky in skybox.comp");
+
+// The disks as constants of a pipeline (shaders/render/disk_constants.glsl): DISK_LIGHTS and
+// FACET_DISK_LIGHT_i, for the forward pass's and the skybox's. At most kMaxForwardDiskLights.
+inline std::vector<ShaderDefine> disk_light_defines(const std::vector<DiskLight>& disks) {
+    std::vector<ShaderDefine> defines;
+    if (disks.empty()) return defines;
+    defines.push_back({"DISK_LIGHTS", std::to_string(disks.size())});
+    for (size_t i = 0; i < disks.size(); ++i)
+        defines.push_back({"FACET_DISK_LIGHT_" + std::to_string(i), packed_light_literal(disk_data(disks[i]))});
+    return defines;
+}
 
 // Copies `lights` into a slot's storage buffer, growing it first when it is too small
 // (a frame with more lights than any before; steady frames reuse it). At least one

@@ -108,8 +108,6 @@ ForwardRenderer::ForwardRenderer(Context& context, ProgramCache& programs, uint3
         // Room for a typical frame's lights up front, so that steady frames never grow them.
         s.lights = or_throw(Buffer::create(context, 16 * sizeof(LightData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                            MemoryUsage::upload, "frame lights" + n));
-        s.sky_disks = or_throw(Buffer::create(context, 8 * sizeof(LightData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                              MemoryUsage::upload, "skybox disks" + n));
     }
 }
 
@@ -259,11 +257,7 @@ Result<std::vector<const Pipeline*>> ForwardRenderer::pipelines(const GpuScene& 
         return Error{"the forward pass shades at most " + std::to_string(kMaxForwardDiskLights) +
                      " disk lights extracted from the environment, not " +
                      std::to_string(s.environment_lights.size()) + " (LightExtractionSettings::max_lights)"};
-    if (ibl && !s.environment_lights.empty()) {
-        disk_defines.push_back({"DISK_LIGHTS", std::to_string(s.environment_lights.size())});
-        for (size_t i = 0; i < s.environment_lights.size(); ++i)
-            disk_defines.push_back({"FACET_DISK_LIGHT_" + std::to_string(i), packed_light_literal(disk_data(s.environment_lights[i]))});
-    }
+    if (ibl) disk_defines = disk_light_defines(s.environment_lights);
     std::vector<const Pipeline*> out(scene.instances.size(), nullptr);
     for (uint32_t i = 0; i < scene.instances.size(); ++i) {
         if (opaque_background && !in_transmission_background(scene, i)) continue;

@@ -28,29 +28,26 @@ Result<ImageHandle> ForwardRenderer::add_skybox_pass(RenderGraph& graph, ImageHa
     const VkFormat format = graph.resource(hdr).image_desc.format;
     if (format != VK_FORMAT_R32G32B32A32_SFLOAT && format != VK_FORMAT_R16G16B16A16_SFLOAT)
         return Error{"the skybox composites into RGBA32F or RGBA16F images, not '" + graph.resource(hdr).name + "'"};
-    std::vector<ShaderDefine> defines;
+    if (s.environment_lights.size() > kMaxForwardDiskLights)
+        return Error{"the skybox shows at most " + std::to_string(kMaxForwardDiskLights) +
+                     " disk lights extracted from the environment, not " + std::to_string(s.environment_lights.size())};
+    // The disks as constants of the pipeline, as the forward pass's.
+    std::vector<ShaderDefine> defines = disk_light_defines(s.environment_lights);
     if (format == VK_FORMAT_R16G16B16A16_SFLOAT) defines.push_back({"FRAME_RGBA16F", "1"});
     auto sky = programs_.compute("render/skybox.comp", defines);
     if (!sky) return sky.error();
-    std::vector<LightData> disks;
-    for (const DiskLight& d : s.environment_lights) disks.push_back(disk_data(d));
     glm::mat4 rotation = camera.view;
     rotation[3] = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
-    const SkyConstants constants{glm::inverse(camera.projection * rotation), 0.0f, ibl.intensity,
-                                 uint32_t(disks.size())};
+    const SkyConstants constants{glm::inverse(camera.projection * rotation), 0.0f, ibl.intensity};
     ImageHandle written;
     graph.add_compute_pass("skybox", [&](PassBuilder& b) {
         b.sample(ibl.cube);
         written = b.read_write_storage(hdr);
-    }, [this, frame, p = *sky, constants, disks = std::move(disks), hdr, cube = ibl.cube,
-        sampler = ibl.cube_sampler](PassContext& pc) {
-        Buffer& disk_buffer = slots_[frame].sky_disks;
-        write_lights(context_, disk_buffer, disks, "skybox disks");
+    }, [p = *sky, constants, hdr, cube = ibl.cube, sampler = ibl.cube_sampler](PassContext& pc) {
         const ImageDesc& d = pc.desc(hdr);
         p->bind(pc.cmd());
         const DescriptorWrite writes[] = {DescriptorWrite::sampled_image(pc.view(cube), sampler),
-                                          DescriptorWrite::storage_image(pc.view(hdr, ImageRange::mip(0))),
-                                          DescriptorWrite::storage_buffer(disk_buffer.handle())};
+                                          DescriptorWrite::storage_image(pc.view(hdr, ImageRange::mip(0)))};
         p->push_descriptors(pc.cmd(), writes);
         p->push_constants(pc.cmd(), constants);
         const auto local = p->workgroup_size();

@@ -520,6 +520,23 @@ float facet_segment_share(float x) {
     return x <= 0.5 ? f : 1.0 - f;
 }
 
+// The cap's irradiance at a surface of normal n, over its radiance: pi sin^2(theta) (n.c)
+// above the horizon (exact); where the horizon cuts it, the cap taken as a flat disk of
+// radius rho = sin theta whose points rise by n.c = e above the horizon at its centre: the
+// integral of the height over the visible segment, e pi rho^2 (segment share) + 2/3 (rho^2 -
+// e^2)^1.5 (within 1-4% of the sum over the cap). Caps under 2 degrees (suns, lamps) are
+// taken as points at the horizon, which then cuts them within their radius alone.
+float facet_disk_irradiance(vec3 n, FacetDiskLight disk) {
+    float sin_theta = disk.sin_radius, NdotC = dot(n, disk.direction);
+    bool wide = sin_theta > 0.035;
+    float cut = clamp(NdotC + sin_theta, 0.0, 2.0 * sin_theta);
+    float segment = facet_segment_share(cut * disk.inv_diameter);
+    float chord = max(sin_theta * sin_theta - NdotC * NdotC, 0.0);
+    return NdotC >= sin_theta || !wide
+               ? PI * sin_theta * sin_theta * max(NdotC, 0.0)
+               : max(NdotC * PI * sin_theta * sin_theta * segment + 2.0 / 3.0 * chord * sqrt(chord), 0.0);
+}
+
 // The cap shaded with the full BRDF (the environment's k for the thesis' model) in closed
 // form, the same arithmetic for every lobe and cap: a loop over directions in the cap costs
 // every pixel its longest trip on SIMD hardware (lavapipe runs both sides of every branch
@@ -547,22 +564,13 @@ float facet_disk_lobe(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, 
     c = disk.direction;
     float sin_theta = disk.sin_radius, omega = disk.solid_angle;
     float NdotC = dot(s.n, c);
-    // The cap's irradiance: pi sin^2(theta) (n.c) above the horizon (exact); where the
-    // horizon cuts it, the cap taken as a flat disk of radius rho = sin theta whose points
-    // rise by n.c = e above the horizon at its centre: the integral of the height over the
-    // visible segment, e pi rho^2 (segment share) + 2/3 (rho^2 - e^2)^1.5 (within 1-4% of
-    // the sum over the cap).
-    // Caps under 2 degrees (suns, lamps) are taken as points at the horizon, which then
-    // cuts them within their radius alone; where the disk is a constant of the pipeline
-    // (the forward pass) this choice costs nothing, and the small cap's shading skips the
-    // horizon's arithmetic.
+    // The cap's irradiance: facet_disk_irradiance. Caps under 2 degrees are points at the
+    // horizon; where the disk is a constant of the pipeline (the forward pass) this choice
+    // costs nothing, and the small cap's shading skips the horizon's arithmetic.
     bool wide = sin_theta > 0.035;
     float cut = clamp(NdotC + sin_theta, 0.0, 2.0 * sin_theta);
     float segment = facet_segment_share(cut * disk.inv_diameter);
-    float chord = max(sin_theta * sin_theta - NdotC * NdotC, 0.0);
-    irradiance = NdotC >= sin_theta || !wide
-                           ? PI * sin_theta * sin_theta * max(NdotC, 0.0)
-                           : max(NdotC * PI * sin_theta * sin_theta * segment + 2.0 / 3.0 * chord * sqrt(chord), 0.0);
+    irradiance = facet_disk_irradiance(s.n, disk);
     // A cap the horizon cuts: its visible part stands in as the cap between the horizon and
     // the cap's top, carrying the visible segment's solid angle.
     float scale = wide || NdotC > 0.0 ? 1.0 : 0.0, inv_chord2 = disk.inv_chord2;
@@ -741,11 +749,12 @@ struct FacetEnvironmentLight {
     vec3 prefiltered;  // prefiltered radiance along the lookup direction, times the intensity
 };
 
-// Split-sum image-based lighting, occlusion applied. irradiance_map holds E / pi,
+// Split-sum image-based lighting, occlusion applied. `irradiance` is E / pi along n times
+// the intensity (the overload below reads it from an irradiance cube, which holds E / pi),
 // specular_map the GGX-prefiltered radiance read by the lookups k (facet_specular_lookups:
 // one along R, or three fitted to the true lobe), lut facet_brdf_lut's value. multiscatter
 // adds Kulla and Conty's multiple-scattering lobe (the LUT's third channel).
-FacetEnvironmentLight facet_environment_light(FacetSurface s, vec3 v, float NdotV, vec4 lut, samplerCube irradiance_map,
+FacetEnvironmentLight facet_environment_light(FacetSurface s, vec3 v, float NdotV, vec4 lut, vec3 irradiance,
                                               samplerCube specular_map, float intensity, bool multiscatter,
                                               FacetSpecularLookups k) {
     FacetEnvironmentLight env;
@@ -755,7 +764,7 @@ FacetEnvironmentLight facet_environment_light(FacetSurface s, vec3 v, float Ndot
     // which for Schlick's F depends on n.v alone (exact under uniform light).
     vec3 E, kd;
     facet_lut_albedo(s, NdotV, lut, E, kd);
-    env.irradiance = texture(irradiance_map, s.n).rgb * intensity;
+    env.irradiance = irradiance;
     if (multiscatter) {
         // Kulla and Conty 2017: the multiple-scattering lobe f_ms = F_ms (1 - E(mu_o))
         // (1 - E(mu_i)) / (pi (1 - E_avg)), integrated against the environment with
@@ -786,6 +795,13 @@ FacetEnvironmentLight facet_environment_light(FacetSurface s, vec3 v, float Ndot
 #endif
     env.specular += env.prefiltered * E * s.occlusion;
     return env;
+}
+
+FacetEnvironmentLight facet_environment_light(FacetSurface s, vec3 v, float NdotV, vec4 lut, samplerCube irradiance_map,
+                                              samplerCube specular_map, float intensity, bool multiscatter,
+                                              FacetSpecularLookups k) {
+    return facet_environment_light(s, v, NdotV, lut, texture(irradiance_map, s.n).rgb * intensity, specular_map,
+                                   intensity, multiscatter, k);
 }
 
 // KHR_materials_clearcoat's layer under the environment, applied to facet_environment_light's

@@ -135,6 +135,38 @@ TEST_F(BakedEnvironmentTest, SaveThenLoadGivesTheSameTexelsWithExtractedLights) 
     EXPECT_NE(in.cube_sampler, VkSampler(VK_NULL_HANDLE));
 }
 
+// With lights extracted the irradiance is still the whole environment's (the forward pass
+// shades only the disks' specular): texel for texel the bake without extraction's. A bake
+// saved before that (its bake.json without lights.irradiance) is refused, naming the key.
+TEST_F(BakedEnvironmentTest, IrradianceWithExtractedLightsIsTheWholeEnvironments) {
+    BakeSettings settings = small_settings();
+    settings.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    const EnvironmentSource sun = sun_source(256, 1e4, 3.0);
+    auto whole = bake(sun, settings);
+    ASSERT_TRUE(whole) << whole.error().message;
+    settings.extract_lights = true;
+    auto extracted = bake(sun, settings);
+    ASSERT_TRUE(extracted) << extracted.error().message;
+    ASSERT_EQ(extracted->lights().size(), 1u) << "the sun is extracted";
+    ASSERT_TRUE(whole->irradiance() && extracted->irradiance());
+    const auto a = bytes_of(ctx(), *whole->irradiance()), b = bytes_of(ctx(), *extracted->irradiance());
+    EXPECT_TRUE(a == b) << "the irradiance with the sun extracted differs from the whole environment's";
+    // The specular levels from 1 on do differ: they come from the map without the sun.
+    EXPECT_FALSE(bytes_of(ctx(), *whole->specular()) == bytes_of(ctx(), *extracted->specular()));
+
+    test::TempDir dir("baked_environment_old_irradiance");
+    ASSERT_TRUE(extracted->save(dir.path.string()));
+    std::string json = read_text(dir / "bake.json");
+    const size_t at = json.find("\"irradiance\": \"the whole environment");
+    ASSERT_NE(at, std::string::npos) << json;
+    json.replace(at, 1, "\"former_");
+    write_text(dir / "bake.json", json);
+    auto old = BakedEnvironment::load(ctx(), dir.path.string());
+    ASSERT_FALSE(old) << "a bake whose irradiance lacks the lights was loaded";
+    EXPECT_NE(old.error().message.find("lights.irradiance"), std::string::npos) << old.error().message;
+    EXPECT_NE(old.error().message.find("bake.json"), std::string::npos) << old.error().message;
+}
+
 TEST_F(BakedEnvironmentTest, SpecularLevelZeroIsTheEnvironmentCubesLevelZero) {
     // The pass that makes the cube writes specular level 0 (the mirror) too: the same texels.
     BakeSettings settings = small_settings();

@@ -8,10 +8,16 @@
 #include <facet/ibl/bake_settings.h>
 
 #include <cmath>
+#include <filesystem>
 
+#include <unistd.h>
+
+#include <facet/io/image_io.h>
+#include <facet/reference/ibl_reference.h>
 #include <facet/render/specular_lobes.h>
 #include <facet/render/render_job.h>
 #include <facet/scene/builtin_scenes.h>
+#include "io/equirect.h"
 #include "support/gpu_test.h"
 
 namespace facet {
@@ -615,6 +621,48 @@ TEST_F(ForwardRenderTest, SpecularLevelsBelowTheSceneRoughnessAreNotBaked) {
     for (size_t i = 0; i < culled->hdr.size(); ++i)
         worst = std::max(worst, double(std::abs(culled->hdr[i] - all_levels->hdr[i])));
     EXPECT_LT(worst, 1e-5);
+}
+
+// The skybox shows the lights taken out of the map (their disks are constants of its
+// pipeline): looking at a sun, the frame with the sun extracted (auto shading) shows it as
+// bright as the whole environment's cube does (split sum: no extraction), and the sky away
+// from it alike. Without the disks the sun's pixel would read the fill, the sky around it.
+TEST_F(ForwardRenderTest, SkyboxShowsTheExtractedLights) {
+    const test::Equirect sky = test::sun_sky(256, 128, 2e4, 6.0, 35.0, 60.0);
+    const std::string path =
+        (std::filesystem::temp_directory_path() / ("facet_skybox_sun_" + std::to_string(::getpid()) + ".exr")).string();
+    ASSERT_TRUE(write_hdr_image(path, sky.w, sky.h, sky.rgba));
+    // The sun's direction: its brightest texel.
+    size_t brightest = 0;
+    for (size_t i = 0; i < size_t(sky.w) * sky.h; ++i)
+        if (sky.rgba[i * 4 + 1] > sky.rgba[brightest * 4 + 1]) brightest = i;
+    const glm::dvec3 sun = equirect_texel_direction(uint32_t(brightest % sky.w), uint32_t(brightest / sky.w), sky.w, sky.h);
+    // An orbit camera looks at its target from target - 40 sun, along +sun: with the target at
+    // 80 sun the spheres at the origin are behind it (the skybox ignores the position).
+    const float theta = float(std::atan2(-sun.x, -sun.z) * 180.0 / pi), phi = float(std::asin(-sun.y) * 180.0 / pi);
+    std::vector<float> frames[2];
+    size_t lights[2] = {};
+    for (int extracted = 0; extracted < 2; ++extracted) {
+        RenderJob job = small_job("builtin:spheres", path);
+        job.env_width = 256;
+        job.orbit = std::array<float, 3>{theta, phi, 40.0f};
+        job.target = glm::vec3(80.0 * sun);
+        job.shading = extracted ? ShadingMethod::automatic : ShadingMethod::split_sum;
+        std::unique_ptr<RenderSession> session;
+        frames[extracted] = render(job, &session).hdr;
+        ASSERT_TRUE(session);
+        lights[extracted] = session->frame_settings().environment_lights.size();
+    }
+    std::filesystem::remove(path);
+    EXPECT_EQ(lights[0], 0u);
+    EXPECT_GE(lights[1], 1u) << "the sun is extracted";
+    const Pixel whole = at(frames[0], 64, 32, 32), with_disks = at(frames[1], 64, 32, 32);
+    const Pixel sky_whole = at(frames[0], 64, 1, 1), sky_disks = at(frames[1], 64, 1, 1);
+    std::printf("sun's pixel: whole cube %.1f, residual + disks %.1f; sky's: %.4f and %.4f\n", whole.g, with_disks.g,
+                sky_whole.g, sky_disks.g);
+    EXPECT_GT(whole.g, 1e3f) << "the camera looks at the sun";
+    EXPECT_NEAR(with_disks.g / whole.g, 1.0, 0.5);
+    EXPECT_NEAR(sky_disks.g, sky_whole.g, 1e-3 * sky_whole.g);
 }
 
 }  // namespace

@@ -73,9 +73,10 @@ struct IblImages {
     BufferHandle sh9;        // sh9 irradiance coefficients, when that method runs
 };
 
-// Light extraction bakes the specular levels below `level` from the whole environment
-// (lobes narrower than the extracted lights see them as they are) and the rest, the
-// irradiance and the skybox's cube from the map without its lights.
+// Light extraction bakes the irradiance (the diffuse lobe integrates the lights exactly, so
+// the renderers shade only the disks' specular) and the specular levels below `level`
+// (lobes narrower than the extracted lights see them as they are) from the whole
+// environment, and the rest and the skybox's cube from the map without its lights.
 struct SpecularSplit {
     const EnvironmentSource* whole = nullptr;
     uint32_t level = 0;

@@ -153,7 +153,7 @@ private:
     // Per-frame buffers of one slot, host-visible, written when a pass is recorded and
     // grown (never shrunk) when a frame has more lights than they hold.
     struct Slot {
-        Buffer frame, lights, sky_disks;
+        Buffer frame, lights;
     };
     // disk_defines: the extracted disks as the pipeline's constants (made once per pass by pipelines()).
     Result<const Pipeline*> material_pipeline(const GpuScene& scene, uint32_t instance, View view,
