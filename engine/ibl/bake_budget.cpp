@@ -42,10 +42,12 @@ Result<std::pair<Settings, BudgetChoice>> first_meeting(
 
 Result<Budget> choose_within_budget(Context& context, ProgramCache& programs, const EnvironmentSource& env,
                                     const IblSettings& base, double target, float rmin, float rmax,
-                                    const BakeProgressFn& progress, const BakeStopFn& stop) try {
+                                    const BakeProgressFn& progress, const BakeStopFn& stop,
+                                    const EnvironmentSource* whole) try {
     if (!(target > 0)) return Error{"--target-error must be positive"};
     if (!(rmin >= 0 && rmin <= rmax && rmax <= 1)) return Error{"--roughness must be A,B with 0 <= A <= B <= 1"};
-    if (env.sky || env.image.rgba.empty()) return Error{"budget: the environment's texels are needed"};
+    if (env.sky || env.image.rgba.empty() || (whole && (whole->sky || whole->image.rgba.empty())))
+        return Error{"budget: the environment's texels are needed"};
     Budget budget;
     budget.target = target;
     budget.roughness_min = rmin;
@@ -56,6 +58,8 @@ Result<Budget> choose_within_budget(Context& context, ProgramCache& programs, co
     auto stats_of = [](const ErrorStats& s) { return s.bad ? INFINITY : s.rel_rmse(); };
 
     if (base.want_irradiance) {
+        const EnvironmentSource& lit = whole ? *whole : env;  // what the irradiance is baked from
+        const test::Equirect lit_texels{lit.width, lit.height, lit.image.rgba};
         std::vector<Candidate<IrradianceSettings>> candidates;
         auto add = [&](const char* method, std::string params, auto set) {
             IrradianceSettings s = base.irradiance;
@@ -74,12 +78,12 @@ Result<Budget> choose_within_budget(Context& context, ProgramCache& programs, co
             [&](const IrradianceSettings& s) -> Result<std::pair<double, double>> {
                 IblSettings settings = base;
                 settings.irradiance = s;
-                auto baked = measure.bake(env, settings, "irradiance", stop);
+                auto baked = measure.bake(lit, settings, "irradiance", stop);
                 if (!baked) return baked.error();
                 ErrorStats stats;
                 compare_cube(*baked, 0, [&](const test::Vec3& n) {
                     bake_safe_point(stop, "budget");  // each truth is a sum over every texel
-                    return test::irradiance_over_pi(e, n);
+                    return test::irradiance_over_pi(lit_texels, n);
                 }, stats, 3);
                 return std::pair{stats_of(stats), baked->gpu_ms};
             },

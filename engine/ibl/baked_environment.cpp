@@ -214,7 +214,7 @@ Result<BakedEnvironment> bake(Context& context, ProgramCache& programs, const En
     if (settings.target_error > 0) {
         auto budget = choose_within_budget(context, programs, residual ? *residual : analysed, settings.ibl,
                                            settings.target_error, settings.roughness_min, settings.roughness_max,
-                                           cb.progress, cb.stop);
+                                           cb.progress, cb.stop, residual ? &analysed : nullptr);
         if (!budget) return budget.error();
         settings.ibl = budget->settings;
         meta.budget = *budget;

@@ -34,10 +34,12 @@ struct Budget {
 // `env` must hold its texels (materialize_environment). Candidates are tried from the
 // cheapest (by facet-bench sweep's timings) until one meets the target. `progress` gets
 // a line per candidate measured; `stop` is asked between passes ("pass") and inside the
-// brute-force sums ("budget"): when it says stop, the Error is_cancelled().
+// brute-force sums ("budget"): when it says stop, the Error is_cancelled(). `whole`: where
+// lights were taken out of `env`, the whole environment, which the irradiance is baked from
+// (SpecularSplit), so that its method is judged there.
 Result<Budget> choose_within_budget(Context& context, ProgramCache& programs, const EnvironmentSource& env,
                                     const IblSettings& base, double target, float roughness_min,
                                     float roughness_max, const BakeProgressFn& progress = {},
-                                    const BakeStopFn& stop = {});
+                                    const BakeStopFn& stop = {}, const EnvironmentSource* whole = nullptr);
 
 }  // namespace facet
