@@ -609,6 +609,11 @@ float facet_disk_lobe(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, 
     return visibility * NdotL * 4.0 * VdotH * VdotH * NdotH * NdotH * q * share * scale;
 }
 
+// The cap's diffuse and specular (facet_disk_lobe), occlusion not applied. A bake of Facet's
+// with lights extracted holds their light in its irradiance cube (ibl/ibl_bake.h,
+// SpecularSplit): a host shading its disks next to that cube adds their specular alone, or
+// takes facet_disk_irradiance out of the cube's value where it adds their diffuse
+// (render/forward.frag does so for sheen and iridescent surfaces).
 void facet_disk_light(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, out vec3 diffuse, out vec3 specular) {
     float irradiance;
     vec3 c, h;

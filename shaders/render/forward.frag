@@ -338,7 +338,7 @@ void main() {
     // The DISK_LIGHTS disks, constants of the pipeline: their specular (and what passes
     // through a transmitting surface). Their diffuse is the irradiance cube's, baked from the
     // whole environment (ibl/ibl_bake.h, SpecularSplit): the diffuse lobe integrates them
-    // exactly there (each disk's closed form cost ~1 ms of a 1280x720 frame on lavapipe);
+    // exactly there (each disk's closed-form diffuse cost ~1 ms of a 1280x720 frame on lavapipe);
     // what that leaves is the diffuse weight's (1 - F) taken as its mean over the hemisphere
     // instead of at each disk's half vector (the shared environments' worst groups moved by
     // under 0.2 points). A sheen's lobe and an iridescent film's F change too much across
