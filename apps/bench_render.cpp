@@ -108,26 +108,18 @@ int run_render_bench(const cli::Parsed& a) {
         }
         runs[i].session = std::move(*session);
     }
-    // One method's frames after a warm-up; with --compare the methods take turns in blocks
-    // of three frames (against the drift of a shared machine), each block's first
-    // unmeasured: a frame that follows the other session's reads what that session left
-    // cold (on lavapipe the split sum read 15-25 ms slower right after an auto frame than
-    // after its own). A session's own speed still varies by about 10% from run to run.
-    const int block = runs.size() > 1 ? 2 : frames;
-    for (int done = 0; done < frames; done += block)
+    // Frame by frame, the methods in turn.
+    for (int f = -1; f < frames; ++f)
         for (Measured& r : runs) {
-            for (int f = -1; f < std::min(block, frames - done); ++f) {
-                if (Status s = r.frame(f >= 0); !s) {
-                    std::fprintf(stderr, "facet-bench: error: %s\n", s.error().message.c_str());
-                    return 1;
-                }
-                if (f >= 0)
-                    std::fprintf(stderr, "facet-bench: frame %d/%d%s: %.1f ms GPU\n", done + f + 1, frames,
-                                 runs.size() > 1
-                                     ? (std::string(", ") + shading_method_name(r.session->shading().method)).c_str()
-                                     : "",
-                                 r.gpu.back());
+            if (Status s = r.frame(f >= 0); !s) {
+                std::fprintf(stderr, "facet-bench: error: %s\n", s.error().message.c_str());
+                return 1;
             }
+            if (f >= 0)
+                std::fprintf(stderr, "facet-bench: frame %d/%d%s: %.1f ms GPU\n", f + 1, frames,
+                             runs.size() > 1 ? (std::string(", ") + shading_method_name(r.session->shading().method)).c_str()
+                                             : "",
+                             r.gpu.back());
         }
     std::string csv = "pass,median_gpu_ms,median_wall_ms,frames\n";
     runs[0].print(job, frames, context, csv);
@@ -142,7 +134,7 @@ int run_render_bench(const cli::Parsed& a) {
             if (b_forward[i] > 0) ratios.push_back(a_forward[i] / b_forward[i]);
         const std::string a_name = shading_method_name(runs[0].session->shading().method);
         const std::string b_name = shading_method_name(runs[1].session->shading().method);
-        std::printf("\n  forward %s / %s: %.2fx (medians), %.2fx (median of %zu frame pairs, in turns in one process)\n",
+        std::printf("\n  forward %s / %s: %.2fx (medians), %.2fx (median of %zu frame pairs, in turn in one process)\n",
                     a_name.c_str(), b_name.c_str(), median(a_forward) / std::max(median(b_forward), 1e-9),
                     median(ratios), ratios.size());
     }
