@@ -22,8 +22,6 @@ void add_render_bench_options(cli::Parser& parser) {
         .option("--frames", "N", "render: frames measured after one warm-up (default 10)")
         .option("--samples", "N", "render: MSAA samples, 1, 2, 4 (default) or 8")
         .option("--shading", "METHOD", "render: environment lighting, as facet-render's --shading (default auto)")
-        .option("--compare", "METHOD", "render: also render with this shading method (e.g. split-sum), its frames\n"
-                                       "taking turns with --shading's in one process, and print the forward pass's ratio")
         .flag("--floor", "render: the rasterizer's floor instead of the shading: the same draws, depth and MSAA,\n"
                          "each fragment writing its material's base colour (no texture, no light)")
         .repeatable("--light", "SPEC", "render: a light, as facet-render's --light (repeatable)");
@@ -91,14 +89,6 @@ RenderBenchOptions parse_render_bench_options(const cli::Parsed& a) {
     job.frame.samples = samples_option(a, job.frame.samples);
     job.shading = shading_option(a, job.shading);
     job.frame.flat_floor = a.has("--floor");
-    if (a.has("--compare")) {
-        const auto method = parse_shading_method(a.get("--compare"));
-        if (!method)
-            throw std::invalid_argument("--compare: expected one of " + std::string(shading_method_names()) + ", got '" +
-                                        a.get("--compare") + "'");
-        if (job.frame.flat_floor) throw std::invalid_argument("--compare: not with --floor (the floor has no shading)");
-        o.compare = *method;
-    }
     for (const std::string& spec : a.all("--light")) {
         auto light = parse_light(spec);
         if (!light) throw std::invalid_argument(light.error().message);

@@ -25,9 +25,6 @@ std::optional<BenchOptions> parse_bench_options(int argc, char** argv);
 struct RenderBenchOptions {
     RenderJob job;
     int frames = 10;
-    // --compare METHOD: the same frames with this shading method too, frame by frame in turn
-    // in one process (process-to-process variance on lavapipe is about +-10%).
-    std::optional<ShadingMethod> compare;
 };
 // Throws std::invalid_argument naming the option.
 RenderBenchOptions parse_render_bench_options(const cli::Parsed& args);

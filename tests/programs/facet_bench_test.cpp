@@ -55,23 +55,6 @@ TEST(FacetBench, RenderReportsMedianFrameAndPasses) {
     EXPECT_NE(bad_out.find("builtin:nothing"), std::string::npos) << bad_out;
 }
 
-// --compare: a second shading method's frames in turn with the first's, one table each and
-// the forward pass's ratio; a method it does not know, or the floor, is refused.
-TEST(FacetBench, RenderComparesTwoShadingMethodsInOneProcess) {
-    auto [status, out] = run("render --model builtin:sphere --env builtin:sky --width 64 --height 48 --frames 2 "
-                             "--samples 1 --shading lights --compare split-sum");
-    ASSERT_EQ(status, 0) << out;
-    for (const char* text : {"shading lights,", "shading split-sum,", "forward lights / split-sum: ", "(median of 2 frame pairs"})
-        EXPECT_NE(out.find(text), std::string::npos) << text << "\n" << out;
-    EXPECT_EQ(out.find("Validation"), std::string::npos) << out;
-    auto [unknown, unknown_out] = run("render --compare bogus");
-    EXPECT_EQ(unknown, 2);
-    EXPECT_NE(unknown_out.find("--compare: expected one of"), std::string::npos) << unknown_out;
-    auto [floor, floor_out] = run("render --floor --compare split-sum");
-    EXPECT_EQ(floor, 2);
-    EXPECT_NE(floor_out.find("--compare: not with --floor"), std::string::npos) << floor_out;
-}
-
 // The sweep on a tiny input: rows for every irradiance setting and LUT setting, errors
 // against the truth (the white furnace: every method is exact up to its sampling), and
 // the charts and report drawn from it by scripts/chart.py with Debian's matplotlib.
