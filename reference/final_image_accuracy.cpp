@@ -127,11 +127,7 @@ FinalImageAccuracy final_image_accuracy(const FinalImageTruth& truth, std::span<
                                     std::to_string(truth.height) + " RGBA");
     FinalImageAccuracy out;
     out.truth_seconds = truth.seconds;
-    for (int g = 0; g < 8; ++g) {
-        out.groups[size_t(g)].roughness_min = 0.2 + 0.2 * (g / 2);
-        out.groups[size_t(g)].roughness_max = g / 2 == 3 ? 1.0 : 0.4 + 0.2 * (g / 2);
-        out.groups[size_t(g)].metal = g % 2 == 1;
-    }
+    for (int g = 0; g < 8; ++g) out.groups[size_t(g)] = measure_group(g);
     for (size_t k = 0; k < truth.index.size(); ++k) {
         const double t = truth.luminance[k];
         if (!(t > 0)) continue;  // a black environment has no relative error to measure
@@ -166,6 +162,14 @@ FinalImageAccuracy final_image_accuracy(const FinalImageViews& views, const Vec3
 FinalImageAccuracy final_image_accuracy(const FinalImageViews& views, const Vec3& eye, const Equirect& env,
                                         BrdfModel model, const AccuracySettings& settings) {
     return final_image_accuracy(views, eye, texel_lights(env), model, settings);
+}
+
+GroupError measure_group(int g) {
+    GroupError e;
+    e.roughness_min = 0.2 + 0.2 * (g / 2);
+    e.roughness_max = g / 2 == 3 ? 1.0 : 0.4 + 0.2 * (g / 2);
+    e.metal = g % 2 == 1;
+    return e;
 }
 
 std::string group_name(const GroupError& g) {

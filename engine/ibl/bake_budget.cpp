@@ -1,6 +1,7 @@
 #include <facet/ibl/bake_budget.h>
 
 #include <cmath>
+#include <optional>
 
 #include <facet/ibl/ibl_measure.h>
 
@@ -59,7 +60,9 @@ Result<Budget> choose_within_budget(Context& context, ProgramCache& programs, co
 
     if (base.want_irradiance) {
         const EnvironmentSource& lit = whole ? *whole : env;  // what the irradiance is baked from
-        const test::Equirect lit_texels{lit.width, lit.height, lit.image.rgba};
+        std::optional<test::Equirect> whole_texels;
+        if (whole) whole_texels = test::Equirect{whole->width, whole->height, whole->image.rgba};
+        const test::Equirect& lit_texels = whole ? *whole_texels : e;
         std::vector<Candidate<IrradianceSettings>> candidates;
         auto add = [&](const char* method, std::string params, auto set) {
             IrradianceSettings s = base.irradiance;

@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include <facet/core/result.h>
 #include <facet/gpu/resources.h>
 #include "render/light_data.h"
 #include <facet/ibl/light_extraction.h>
@@ -41,8 +42,13 @@ struct SkyConstants {
 static_assert(offsetof(SkyConstants, lod) == 64 && offsetof(SkyConstants, intensity) == 68, "Sky in skybox.comp");
 
 // The disks as constants of a pipeline (shaders/render/disk_constants.glsl): DISK_LIGHTS and
-// FACET_DISK_LIGHT_i, for the forward pass's and the skybox's. At most kMaxForwardDiskLights.
-inline std::vector<ShaderDefine> disk_light_defines(const std::vector<DiskLight>& disks) {
+// FACET_DISK_LIGHT_i, for the forward pass's and the skybox's (`pass` names it in the error
+// for more than kMaxForwardDiskLights).
+inline Result<std::vector<ShaderDefine>> disk_light_defines(const std::vector<DiskLight>& disks, const char* pass) {
+    if (disks.size() > kMaxForwardDiskLights)
+        return Error{std::string(pass) + " shades at most " + std::to_string(kMaxForwardDiskLights) +
+                     " disk lights extracted from the environment, not " + std::to_string(disks.size()) +
+                     " (LightExtractionSettings::max_lights)"};
     std::vector<ShaderDefine> defines;
     if (disks.empty()) return defines;
     defines.push_back({"DISK_LIGHTS", std::to_string(disks.size())});

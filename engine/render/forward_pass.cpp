@@ -253,11 +253,11 @@ Result<std::vector<const Pipeline*>> ForwardRenderer::pipelines(const GpuScene& 
     const Scene& scene = gpu.scene();
     // The disks as constants of every material's pipeline, written once for the pass.
     std::vector<ShaderDefine> disk_defines;
-    if (ibl && s.environment_lights.size() > kMaxForwardDiskLights)
-        return Error{"the forward pass shades at most " + std::to_string(kMaxForwardDiskLights) +
-                     " disk lights extracted from the environment, not " +
-                     std::to_string(s.environment_lights.size()) + " (LightExtractionSettings::max_lights)"};
-    if (ibl) disk_defines = disk_light_defines(s.environment_lights);
+    if (ibl) {
+        auto defines = disk_light_defines(s.environment_lights, "the forward pass");
+        if (!defines) return defines.error();
+        disk_defines = std::move(*defines);
+    }
     std::vector<const Pipeline*> out(scene.instances.size(), nullptr);
     for (uint32_t i = 0; i < scene.instances.size(); ++i) {
         if (opaque_background && !in_transmission_background(scene, i)) continue;

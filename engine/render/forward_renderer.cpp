@@ -28,11 +28,10 @@ Result<ImageHandle> ForwardRenderer::add_skybox_pass(RenderGraph& graph, ImageHa
     const VkFormat format = graph.resource(hdr).image_desc.format;
     if (format != VK_FORMAT_R32G32B32A32_SFLOAT && format != VK_FORMAT_R16G16B16A16_SFLOAT)
         return Error{"the skybox composites into RGBA32F or RGBA16F images, not '" + graph.resource(hdr).name + "'"};
-    if (s.environment_lights.size() > kMaxForwardDiskLights)
-        return Error{"the skybox shows at most " + std::to_string(kMaxForwardDiskLights) +
-                     " disk lights extracted from the environment, not " + std::to_string(s.environment_lights.size())};
     // The disks as constants of the pipeline, as the forward pass's.
-    std::vector<ShaderDefine> defines = disk_light_defines(s.environment_lights);
+    auto disks = disk_light_defines(s.environment_lights, "the skybox");
+    if (!disks) return disks.error();
+    std::vector<ShaderDefine> defines = std::move(*disks);
     if (format == VK_FORMAT_R16G16B16A16_SFLOAT) defines.push_back({"FRAME_RGBA16F", "1"});
     auto sky = programs_.compute("render/skybox.comp", defines);
     if (!sky) return sky.error();

@@ -135,13 +135,7 @@ void finish_shading_choice(ResolvedShading& r, size_t lights, double power_fract
 
 namespace {
 
-std::string group_label(size_t g) {
-    test::GroupError e;
-    e.roughness_min = 0.2 + 0.2 * double(g / 2);
-    e.roughness_max = g / 2 == 3 ? 1.0 : 0.4 + 0.2 * double(g / 2);
-    e.metal = g % 2 == 1;
-    return test::group_name(e);
-}
+std::string group_label(size_t g) { return test::group_name(test::measure_group(int(g))); }
 
 }  // namespace
 

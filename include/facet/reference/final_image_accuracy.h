@@ -79,6 +79,9 @@ FinalImageAccuracy final_image_accuracy(const FinalImageViews& views, const Vec3
 FinalImageAccuracy final_image_accuracy(const FinalImageViews& views, const Vec3& eye, const Equirect& env,
                                         BrdfModel model, const AccuracySettings& settings = {});
 
+// Group g of the measure (band-major: 2 * band + metal), its band's edges and metalness set,
+// nothing measured yet.
+GroupError measure_group(int g);
 // "roughness [0.2,0.4) dielectric", ...
 std::string group_name(const GroupError& g);
 // One header line, then one line per group (name, pixels, mean %, max %, signed mean %),
