@@ -200,13 +200,20 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     define_if(ibl, "USE_IBL");
     define_if(settings.brdf == BrdfModel::thesis, "BRDF_THESIS");
     define_if(ibl && settings.multiscatter, "MULTISCATTER");
+    // A mirror (roughness 0) reads level 0 of the specular cube, which holds the extracted
+    // lights (the split level is at least 1 where there are lights): the disks' specular
+    // counts for none of its lookup (facet_disk_specular_weight), and its fitted lookups all
+    // read R at level 0. Neither is compiled in, unless a layer or lobe of its own (a
+    // clearcoat, a transmission, a sheen's or a film's disk diffuse) reads the disks.
+    const bool mirror = m.roughness == 0.0f && settings.environment_light_level >= 1 && !coated && !film && !sheen &&
+                        !through;
     // The fitted lookups where the material reaches a group that needs them.
     bool bend = false;
     const std::array<bool, 8> reached = material_shading_groups(m);
     for (size_t g = 0; g < reached.size(); ++g) bend = bend || (reached[g] && settings.dominant_groups[g]);
-    define_if(ibl && settings.dominant_direction && bend, "DOMINANT_DIRECTION");
+    define_if(ibl && settings.dominant_direction && bend && !mirror, "DOMINANT_DIRECTION");
     define_if(settings.flat_floor, "FLAT_FLOOR");
-    defines.insert(defines.end(), disk_defines.begin(), disk_defines.end());
+    if (!mirror) defines.insert(defines.end(), disk_defines.begin(), disk_defines.end());
     defines.push_back({"VIEW", std::to_string(int(view))});
 
     Pipeline::GraphicsDesc desc;

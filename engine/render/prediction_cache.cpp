@@ -9,6 +9,7 @@
 
 #include <facet/cache/directory_cache.h>
 #include <facet/core/hash.h>
+#include <facet/render/specular_lobes.h>
 #include "render/shading_choice.h"
 #include "shader/embedded_shaders.h"
 
@@ -35,6 +36,9 @@ std::string cache_key(const RenderSession::State& s, std::span<const ShadingMeth
     }
     for (std::size_t i = 0; i < embedded::shader_count; ++i)
         h.add(embedded::shaders[i].name).add("|").add(embedded::shaders[i].text, embedded::shaders[i].size);
+    // The fitted lookups' table is data of the library, not of the shaders.
+    const std::vector<float> lobes = specular_lobe_table_texels();
+    h.add(lobes.data(), lobes.size() * sizeof(float));
     return "prediction-" + h.hex();
 }
 

@@ -558,12 +558,14 @@ float facet_disk_irradiance(vec3 n, FacetDiskLight disk) {
 // near the cap and 0.2-9% (mostly under 4%) in the tails; the final image under the shared
 // environments is as close to the truth as with the sums (docs/accuracy.md).
 // Occlusion not applied. facet_disk_lobe gives the parts: the cap's irradiance, and the
-// specular integral without F (returned), with the cap's centre c and its half vector h.
+// specular integral without F (returned), with the cap's centre c, its half vector h and
+// v.h. Per disk it works on three dot products (n.c, v.c, n.v) and needs three divisions:
+// on lavapipe every division and square root costs every lane, and a studio has eight caps.
 float facet_disk_lobe(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, out float irradiance, out vec3 c,
-                      out vec3 h) {
+                      out vec3 h, out float VdotH) {
     c = disk.direction;
     float sin_theta = disk.sin_radius, omega = disk.solid_angle;
-    float NdotC = dot(s.n, c);
+    float NdotC = dot(s.n, c), VdotC = dot(v, c), nv = dot(s.n, v);
     // The cap's irradiance: facet_disk_irradiance. Caps under 2 degrees are points at the
     // horizon; where the disk is a constant of the pipeline (the forward pass) this choice
     // costs nothing, and the small cap's shading skips the horizon's arithmetic.
@@ -572,41 +574,76 @@ float facet_disk_lobe(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, 
     float segment = facet_segment_share(cut * disk.inv_diameter);
     irradiance = facet_disk_irradiance(s.n, disk);
     // A cap the horizon cuts: its visible part stands in as the cap between the horizon and
-    // the cap's top, carrying the visible segment's solid angle.
+    // the cap's top, carrying the visible segment's solid angle. Its centre, c - (n.c) n
+    // (of length sqrt(1 - (n.c)^2)) turned up to the height sin_new, is needed only through
+    // its dot products (cn = n.c, cv = v.c).
     float scale = wide || NdotC > 0.0 ? 1.0 : 0.0, inv_chord2 = disk.inv_chord2;
+    float cn = NdotC, cv = VdotC, inv_omega = 1.0 / omega;
     if (wide && NdotC < sin_theta) {
         float sin_new = 0.5 * cut, cos_new = sqrt(max(1.0 - sin_new * sin_new, 0.0));
-        vec3 across = c - NdotC * s.n;
-        c = across * (inversesqrt(max(dot(across, across), 1e-12)) * cos_new) + s.n * sin_new;
-        float chord2 = 2.0 * sin_new * sin_new / (1.0 + cos_new);  // 2 - 2 cos, without the cancellation
-        inv_chord2 = 1.0 / max(chord2, 1e-12);
+        float along = cos_new * inversesqrt(max(1.0 - NdotC * NdotC, 1e-12));
+        c = (c - NdotC * s.n) * along + s.n * sin_new;
+        cn = sin_new;
+        cv = (VdotC - NdotC * nv) * along + nv * sin_new;
+        // The squared chord 2 - 2 cos = 2 sin^2 / (1 + cos) (without the cancellation) and
+        // its inverse, from one division.
+        float sin2 = 2.0 * sin_new * sin_new, cos1 = 1.0 + cos_new;
+        float reciprocal = 1.0 / max(sin2 * cos1, 1e-30);
+        float chord2 = sin2 * sin2 * reciprocal;
+        inv_chord2 = min(cos1 * cos1 * reciprocal, 1e12);
         scale = omega * segment * inv_chord2 / PI;  // the segment's solid angle over the new cap's, pi chord2
         omega = PI * chord2;
+        inv_omega = inv_chord2 / PI;
     }
     // The centre's half vector: the slope of the cap's image, F and the diffuse weight.
-    h = v + c;
-    h *= inversesqrt(max(dot(h, h), 1e-12));
-    float VdotH = clamp(dot(v, h), 1e-4, 1.0), NdotH = clamp(dot(s.n, h), 1e-4, 1.0);
+    // |v + c|^2 = 2 + 2 v.c.
+    float inv_length = inversesqrt(max(2.0 + 2.0 * cv, 1e-12));
+    h = (v + c) * inv_length;
+    VdotH = clamp((1.0 + cv) * inv_length, 1e-4, 1.0);
+    float NdotH = clamp((nv + cn) * inv_length, 1e-4, 1.0);
     float alpha = max(s.roughness * s.roughness, MIN_ALPHA), a2 = alpha * alpha, inv_a2 = 1.0 / a2;
-    vec3 R = reflect(-v, s.n);
-    float q = 1.0 / (VdotH * NdotH * NdotH * NdotH);
+    // R's distance from the cap in radii (1 at the edge; R.c = 2 (n.v)(n.c) - v.c), and the
+    // weight of the near view: the lobe narrower than the cap's image and R not far outside it,
+    // r^2 / (r^2 + alpha^2 + (r x outside)^2) with r^2 = Omega q / (4 pi),
+    // q = 1 / ((v.h) (n.h)^3). q and the weight from one division.
+    float reach2 = (2.0 - 2.0 * (2.0 * nv * cn - cv)) * inv_chord2;
+    float outside = max(sqrt(reach2) - 1.0, 0.0);
+    float slope = VdotH * NdotH * NdotH * NdotH;  // 1 / q
+    float rest = 1.0 + outside * outside + a2 * 4.0 * PI * inv_omega * slope;  // 1 / near
+    float reciprocal = 1.0 / (slope * rest);
+    float q = rest * reciprocal, near = slope * reciprocal;
     float r2 = omega / (4.0 * PI) * q;                        // Omega / (4 (v.h) (n.h)^3)
     float centre_d2 = (1.0 - NdotH * NdotH) * VdotH * NdotH * q;  // tan^2 of h's angle from n
-    // R's distance from the cap in radii (1 at the edge), and the weight of the near view:
-    // the lobe narrower than the cap's image and R not far outside it.
-    float reach2 = (2.0 - 2.0 * dot(R, c)) * inv_chord2;
-    float outside = max(sqrt(reach2) - 1.0, 0.0);
-    float near = r2 / (r2 + a2 + outside * outside * r2);
-    float share = facet_ggx_disk_share(mix(centre_d2, r2 * reach2, near) * inv_a2, r2 * inv_a2);
-    // G / (4 n.l n.v), the model's visibility, at the centre.
-    float NdotL = max(dot(s.n, c), 1e-4);
-    float visibility;
-    if (s.brdf == FACET_BRDF_GLTF)
-        visibility = V_SmithGGXCorrelated(NdotV, NdotL, alpha);
-    else
-        visibility = G_Smith(NdotV, NdotL, k_ibl(s.roughness)) / max(4.0 * NdotV * NdotL, 1e-8);
+    // The share (facet_ggx_disk_share) and the model's visibility G / (4 n.l n.v) at the
+    // centre, each a quotient, from one division.
+    float d2 = mix(centre_d2, r2 * reach2, near) * inv_a2, rr2 = r2 * inv_a2;
+    float t = 1.0 + d2 - rr2;
+    float root = sqrt(max(t * t + 4.0 * rr2, 1e-30));
+    float share_numerator = t > 0.0 ? 2.0 * rr2 : root - t, share_denominator = t > 0.0 ? root * (root + t) : 2.0 * root;
+    float NdotL = max(cn, 1e-4);
+    float visibility_numerator, visibility_denominator;
+    if (s.brdf == FACET_BRDF_GLTF) {
+        // V_SmithGGXCorrelated
+        float gv = NdotL * sqrt(NdotV * NdotV * (1.0 - a2) + a2);
+        float gl = NdotV * sqrt(NdotL * NdotL * (1.0 - a2) + a2);
+        visibility_numerator = gv + gl > 0.0 ? 0.5 : 0.0;
+        visibility_denominator = max(gv + gl, 1e-30);
+    } else {
+        // G_Smith(k_ibl) / (4 n.l n.v): Schlick-GGX's n.v and n.l cancel,
+        // 1 / (4 (n.v (1 - k) + k) (n.l (1 - k) + k)).
+        float k = k_ibl(s.roughness);
+        visibility_numerator = NdotV > 0.0 ? 1.0 : 0.0;
+        visibility_denominator = max(4.0 * (NdotV * (1.0 - k) + k) * (NdotL * (1.0 - k) + k), 1e-30);
+    }
     // 4 (v.h) / (n.h) = 4 (v.h)^2 (n.h)^2 q.
-    return visibility * NdotL * 4.0 * VdotH * VdotH * NdotH * NdotH * q * share * scale;
+    return visibility_numerator * share_numerator / (visibility_denominator * share_denominator) * NdotL * 4.0 *
+           VdotH * VdotH * NdotH * NdotH * q * scale;
+}
+
+float facet_disk_lobe(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, out float irradiance, out vec3 c,
+                      out vec3 h) {
+    float VdotH;
+    return facet_disk_lobe(s, v, NdotV, disk, irradiance, c, h, VdotH);
 }
 
 // The cap's diffuse and specular (facet_disk_lobe), occlusion not applied. A bake of Facet's
@@ -615,10 +652,9 @@ float facet_disk_lobe(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, 
 // takes facet_disk_irradiance out of the cube's value where it adds their diffuse
 // (render/forward.frag does so for sheen and iridescent surfaces).
 void facet_disk_light(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, out vec3 diffuse, out vec3 specular) {
-    float irradiance;
+    float irradiance, VdotH;
     vec3 c, h;
-    float lobe = facet_disk_lobe(s, v, NdotV, disk, irradiance, c, h);
-    float VdotH = clamp(dot(v, h), 1e-4, 1.0);
+    float lobe = facet_disk_lobe(s, v, NdotV, disk, irradiance, c, h, VdotH);
     vec3 F, kd;
     facet_fresnel(s, VdotH, F, kd);
     diffuse = kd * s.albedo * (irradiance / PI) * disk.radiance;
@@ -653,9 +689,10 @@ vec3 facet_disk_transmission(FacetSurface s, vec3 v, float NdotV, FacetDiskLight
     t.roughness = s.transmission_roughness;
     float irradiance;
     vec3 c, h;
-    float lobe = facet_disk_lobe(t, v, NdotV, m, irradiance, c, h);
+    float VdotH;
+    float lobe = facet_disk_lobe(t, v, NdotV, m, irradiance, c, h, VdotH);
     vec3 F, kd;
-    facet_fresnel(s, clamp(dot(v, h), 1e-4, 1.0), F, kd);
+    facet_fresnel(s, VdotH, F, kd);
     return s.transmission * s.albedo * kd * lobe * disk.radiance;
 }
 

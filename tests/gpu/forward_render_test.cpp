@@ -170,6 +170,52 @@ TEST_F(ForwardRenderTest, FittedLookupsOnlyWhereTheirGroupsBend) {
     EXPECT_GT(metal_apart, metal / 4) << "the bend changes too few metal pixels to tell";
 }
 
+// A mirror reads level 0 of the specular cube, which holds the extracted lights: the disks'
+// specular weighs nothing there and its fitted lookups all read R at level 0, so its pipeline
+// compiles neither. Its frame is the split sum's, and a surface just off the mirror (whose
+// pipeline has both) renders within a hair of it.
+TEST_F(ForwardRenderTest, AMirrorNeedsNeitherTheDisksNorTheFittedLookups) {
+    auto frame = [&](ShadingMethod method, float roughness, size_t* disks = nullptr) {
+        RenderJob job = small_job("builtin:sphere", "builtin:sky");
+        job.env_width = 256;  // the sun resolved, so that it is extracted
+        job.frame.skybox = false;
+        job.frame.samples = 1;
+        job.shading = method;
+        Scene scene = builtin_scene("builtin:sphere", std::nullopt).value();
+        scene.materials[0].metallic = 1.0f;
+        scene.materials[0].roughness = roughness;
+        auto session = RenderSession::create(ctx(), job, std::move(scene));
+        EXPECT_TRUE(session) << (session ? "" : session.error().message);
+        if (!session) return RenderedImages{};
+        if (disks) *disks = (*session)->frame().environment_lights.size();
+        auto images = (*session)->render_frame();
+        EXPECT_TRUE(images) << (images ? "" : images.error().message);
+        return images ? *images : RenderedImages{};
+    };
+    size_t disks = 0;
+    const RenderedImages mirror = frame(ShadingMethod::lights_dominant, 0.0f, &disks);
+    const RenderedImages plain = frame(ShadingMethod::split_sum, 0.0f);
+    const RenderedImages near = frame(ShadingMethod::lights_dominant, 1e-5f);
+    EXPECT_GE(disks, 1u) << "no light extracted: nothing to skip";
+    ASSERT_EQ(mirror.hdr.size(), 64u * 64u * 4u);
+    ASSERT_EQ(plain.hdr.size(), mirror.hdr.size());
+    ASSERT_EQ(near.hdr.size(), mirror.hdr.size());
+    int covered = 0, differ = 0;
+    double worst = 0;
+    for (size_t i = 0; i < mirror.hdr.size(); i += 4) {
+        if (mirror.hdr[i + 3] <= 0.0f) continue;
+        ++covered;
+        for (size_t c = 0; c < 3; ++c) {
+            differ += mirror.hdr[i + c] != plain.hdr[i + c];
+            worst = std::max(worst, double(std::abs(near.hdr[i + c] - mirror.hdr[i + c])) /
+                                        std::max(double(mirror.hdr[i + c]), 1e-3));
+        }
+    }
+    EXPECT_GT(covered, 1000);
+    EXPECT_EQ(differ, 0) << "the mirror's pipeline is not the split sum's";
+    EXPECT_LT(worst, 1e-3) << "roughness 1e-5 with the disks and the fitted lookups";
+}
+
 // The benchmark's floor (FrameSettings::flat_floor): every covered pixel is the material's
 // base colour factor, whatever the light; the background stays empty.
 TEST_F(ForwardRenderTest, FlatFloorWritesTheBaseColourFactor) {
