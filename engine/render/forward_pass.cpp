@@ -16,6 +16,7 @@
 #include <facet/render/gpu_scene.h>
 #include <facet/render/shading_method.h>
 #include <facet/render/specular_lobes.h>
+#include "render/lobe_disks.h"
 #include <facet/gpu/transfer.h>
 #include <facet/shader/program_cache.h>
 #include "render/forward_data.h"
@@ -207,13 +208,28 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     // clearcoat, a transmission, a sheen's or a film's disk diffuse) reads the disks.
     const bool mirror = m.roughness == 0.0f && settings.environment_light_level >= 1 && !coated && !film && !sheen &&
                         !through;
+    // A material whose roughness is a constant of its pipeline (no roughness texture, no layer
+    // or lobe of another roughness reading the disks) gets the disks its lobe tells apart
+    // (render/lobe_disks.h): a rough lobe integrates a softbox's pieces as one cap.
+    std::vector<ShaderDefine> lobe_disk_defines;
+    const std::vector<ShaderDefine>* disks = &disk_defines;
+    if (ibl && !mirror && !settings.environment_lights.empty() &&
+        !scene.has_texture(material, TextureSlot::metallic_roughness) && !coated && !film && !sheen && !through) {
+        const std::vector<DiskLight> merged = disks_for_lobe(settings.environment_lights, m.roughness);
+        if (merged.size() < settings.environment_lights.size()) {
+            auto merged_defines = disk_light_defines(merged, "the forward pass");
+            if (!merged_defines) return merged_defines.error();
+            lobe_disk_defines = std::move(*merged_defines);
+            disks = &lobe_disk_defines;
+        }
+    }
     // The fitted lookups where the material reaches a group that needs them.
     bool bend = false;
     const std::array<bool, 8> reached = material_shading_groups(m);
     for (size_t g = 0; g < reached.size(); ++g) bend = bend || (reached[g] && settings.dominant_groups[g]);
     define_if(ibl && settings.dominant_direction && bend && !mirror, "DOMINANT_DIRECTION");
     define_if(settings.flat_floor, "FLAT_FLOOR");
-    if (!mirror) defines.insert(defines.end(), disk_defines.begin(), disk_defines.end());
+    if (!mirror) defines.insert(defines.end(), disks->begin(), disks->end());
     defines.push_back({"VIEW", std::to_string(int(view))});
 
     Pipeline::GraphicsDesc desc;

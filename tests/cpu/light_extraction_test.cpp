@@ -9,11 +9,65 @@
 #include <facet/ibl/light_extraction.h>
 #include <facet/io/environment_image.h>
 #include <facet/reference/ibl_reference.h>
+#include "render/lobe_disks.h"
 
 namespace facet {
 namespace {
 
 constexpr double pi = 3.14159265358979323846;
+
+DiskLight cap(glm::vec3 direction, double radius_degrees, glm::vec3 radiance) {
+    DiskLight d;
+    d.direction = glm::normalize(direction);
+    d.angular_radius = float(radius_degrees * pi / 180.0);
+    d.solid_angle = float(2.0 * pi * (1.0 - std::cos(double(d.angular_radius))));
+    d.radiance = radiance;
+    d.power_fraction = 0.25;
+    return d;
+}
+
+// A softbox in two overlapping pieces and a lamp far from it: a smooth lobe keeps all three
+// as they are; a rough one merges the pieces into one cap of their power, mean direction and
+// spread, never the lamp.
+TEST(LobeDisks, RoughLobesMergeCapsTheyCannotTellApart) {
+    const double half = 1.5 * pi / 180.0;  // the pieces' centres 3 degrees apart
+    const std::vector<DiskLight> disks = {
+        cap({-std::sin(half), 0.0, std::cos(half)}, 3.0, {100.0f, 200.0f, 300.0f}),
+        cap({0.0, 1.0, 0.0}, 2.0, {50.0f, 50.0f, 50.0f}),
+        cap({std::sin(half), 0.0, std::cos(half)}, 3.0, {100.0f, 200.0f, 300.0f}),
+    };
+    const std::vector<DiskLight> smooth = disks_for_lobe(disks, 0.2f);  // alpha 0.04: 1.1 degrees
+    ASSERT_EQ(smooth.size(), 3u);
+    for (size_t i = 0; i < 3; ++i) {
+        EXPECT_EQ(smooth[i].direction, disks[i].direction);
+        EXPECT_EQ(smooth[i].radiance, disks[i].radiance);
+        EXPECT_EQ(smooth[i].angular_radius, disks[i].angular_radius);
+    }
+    const std::vector<DiskLight> rough = disks_for_lobe(disks, 0.6f);  // alpha 0.36: 10.3 degrees
+    ASSERT_EQ(rough.size(), 2u);
+    // The pieces first (the first of them is disks[0]), then the lamp untouched.
+    EXPECT_EQ(rough[1].direction, disks[1].direction);
+    EXPECT_EQ(rough[1].radiance, disks[1].radiance);
+    const DiskLight& m = rough[0];
+    for (int c = 0; c < 3; ++c) {
+        const double power = double(disks[0].radiance[c]) * disks[0].solid_angle + double(disks[2].radiance[c]) * disks[2].solid_angle;  // cap() sets 2 pi (1 - cos theta)
+        EXPECT_NEAR(double(m.radiance[c]) * m.solid_angle, power, 1e-4 * power) << "channel " << c;
+    }
+    // Equal power, mirrored about z: the centre is the bisector, and the
+    // spread is each piece's 1.5-degree offset squared plus its own theta^2 / 2.
+    EXPECT_NEAR(m.direction.x, 0.0, 1e-6);
+    EXPECT_NEAR(m.direction.z, 1.0, 1e-6);
+    const double theta = 3.0 * pi / 180.0, expected = std::sqrt(2.0 * (half * half + 0.5 * theta * theta));
+    EXPECT_NEAR(m.angular_radius, expected, 1e-5);
+    EXPECT_NEAR(m.solid_angle, 2.0 * pi * (1.0 - std::cos(expected)), 1e-7);
+    EXPECT_NEAR(m.power_fraction, 0.5, 1e-12);
+    // The lamp is 90 degrees away: no lobe merges it. Nor a faint speck opposite the pieces,
+    // which would hardly move their spread (its light would move 170 degrees).
+    EXPECT_EQ(disks_for_lobe(disks, 1.0f).size(), 2u);
+    std::vector<DiskLight> speck = disks;
+    speck.push_back(cap({0.1, 0.0, -1.0}, 0.5, {1.0f, 1.0f, 1.0f}));
+    EXPECT_EQ(disks_for_lobe(speck, 1.0f).size(), 3u);
+}
 
 TEST(LightExtraction, FindsTheSunWithItsPowerAndDirection) {
     // Sun: 1e5 radiance, 2 degrees across (the synthetic sky of the IBL tests).

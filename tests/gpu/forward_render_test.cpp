@@ -216,6 +216,62 @@ TEST_F(ForwardRenderTest, AMirrorNeedsNeitherTheDisksNorTheFittedLookups) {
     EXPECT_LT(worst, 1e-3) << "roughness 1e-5 with the disks and the fitted lookups";
 }
 
+// A rough lobe is given the disks it can tell apart (render/lobe_disks.h): the studio's
+// softbox pieces merged. The same material with a white metallic-roughness texture (the same
+// roughness, but not a constant of its pipeline) shades every disk: the two frames agree.
+TEST_F(ForwardRenderTest, MergedDisksOfARoughLobeMatchTheDisksApart) {
+    auto frame = [&](bool textured, size_t* disks) {
+        std::string studio = FACET_SHARED_DATA_DIR "/env/";  // appended (GCC 12's false -Wstringop-overflow)
+        studio += "studio_small_03_1k.hdr";
+        RenderJob job = small_job("builtin:sphere", studio);
+        job.frame.skybox = false;
+        job.frame.samples = 1;
+        job.shading = ShadingMethod::lights;
+        Scene scene = builtin_scene("builtin:sphere", std::nullopt).value();
+        Material& m = scene.materials[0];
+        m.base_color = glm::vec4(0.9f, 0.9f, 0.9f, 1.0f);
+        m.metallic = 1.0f;
+        m.roughness = 0.8f;
+        if (textured) {
+            TextureImage white;
+            white.name = "white";
+            white.width = white.height = white.source_width = white.source_height = 1;
+            white.rgba = {255, 255, 255, 255};
+            scene.images.push_back(white);
+            m.metallic_roughness_texture.image = 0;
+        }
+        auto session = RenderSession::create(ctx(), job, std::move(scene));
+        EXPECT_TRUE(session) << (session ? "" : session.error().message);
+        if (!session) return RenderedImages{};
+        *disks = (*session)->frame().environment_lights.size();
+        auto images = (*session)->render_frame();
+        EXPECT_TRUE(images) << (images ? "" : images.error().message);
+        return images ? *images : RenderedImages{};
+    };
+    size_t disks = 0, textured_disks = 0;
+    const RenderedImages merged = frame(false, &disks);
+    const RenderedImages apart = frame(true, &textured_disks);
+    ASSERT_EQ(disks, textured_disks);
+    EXPECT_GE(disks, 4u) << "the studio's softboxes in pieces";
+    ASSERT_EQ(merged.hdr.size(), 64u * 64u * 4u);
+    ASSERT_EQ(apart.hdr.size(), merged.hdr.size());
+    double sum = 0, worst = 0;
+    int covered = 0, differ = 0;
+    for (size_t i = 0; i < merged.hdr.size(); i += 4) {
+        if (merged.hdr[i + 3] <= 0.0f) continue;
+        const double a = 0.2126 * apart.hdr[i] + 0.7152 * apart.hdr[i + 1] + 0.0722 * apart.hdr[i + 2];
+        const double b = 0.2126 * merged.hdr[i] + 0.7152 * merged.hdr[i + 1] + 0.0722 * merged.hdr[i + 2];
+        const double e = std::abs(b - a) / std::max(a, 1e-6);
+        sum += e, worst = std::max(worst, e), ++covered, differ += e > 1e-6;
+    }
+    ASSERT_GT(covered, 1000);
+    std::printf("roughness 0.8 metal under the studio, %zu disks: merged against apart mean %.3f%%, max %.3f%%\n",
+                disks, 100 * sum / covered, 100 * worst);
+    EXPECT_GT(differ, covered / 4) << "no disk merged: nothing compared";
+    EXPECT_LT(sum / covered, 0.01);
+    EXPECT_LT(worst, 0.05);
+}
+
 // The benchmark's floor (FrameSettings::flat_floor): every covered pixel is the material's
 // base colour factor, whatever the light; the background stays empty.
 TEST_F(ForwardRenderTest, FlatFloorWritesTheBaseColourFactor) {
