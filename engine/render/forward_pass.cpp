@@ -206,15 +206,15 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     // counts for none of its lookup (facet_disk_specular_weight), and its fitted lookups all
     // read R at level 0. Neither is compiled in, unless a layer or lobe of its own (a
     // clearcoat, a transmission, a sheen's or a film's disk diffuse) reads the disks.
-    const bool mirror = m.roughness == 0.0f && settings.environment_light_level >= 1 && !coated && !film && !sheen &&
-                        !through;
+    const bool disks_at_own_roughness = !coated && !film && !sheen && !through;
+    const bool mirror = m.roughness == 0.0f && settings.environment_light_level >= 1 && disks_at_own_roughness;
     // A material whose roughness is a constant of its pipeline (no roughness texture, no layer
     // or lobe of another roughness reading the disks) gets the disks its lobe tells apart
     // (render/lobe_disks.h): a rough lobe integrates a softbox's pieces as one cap.
     std::vector<ShaderDefine> lobe_disk_defines;
     const std::vector<ShaderDefine>* disks = &disk_defines;
     if (ibl && !mirror && !settings.environment_lights.empty() &&
-        !scene.has_texture(material, TextureSlot::metallic_roughness) && !coated && !film && !sheen && !through) {
+        !scene.has_texture(material, TextureSlot::metallic_roughness) && disks_at_own_roughness) {
         const std::vector<DiskLight> merged = disks_for_lobe(settings.environment_lights, m.roughness);
         if (merged.size() < settings.environment_lights.size()) {
             auto merged_defines = disk_light_defines(merged, "the forward pass");
