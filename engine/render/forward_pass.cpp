@@ -123,8 +123,7 @@ ForwardRenderer::Slot& ForwardRenderer::slot(uint32_t frame) {
 
 Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene, uint32_t instance, View view,
                                                            const Target& target, bool ibl,
-                                                           const FrameSettings& settings,
-                                                           const std::vector<ShaderDefine>& disk_defines) {
+                                                           const FrameSettings& settings, PassDisks& pass_disks) {
     const Instance& in = scene.scene().instances.at(instance);
     const Primitive& primitive = scene.scene().primitives.at(in.primitive);
     const uint32_t material = primitive.material;
@@ -211,17 +210,21 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     // A material whose roughness is a constant of its pipeline (no roughness texture, no layer
     // or lobe of another roughness reading the disks) gets the disks its lobe tells apart
     // (render/lobe_disks.h): a rough lobe integrates a softbox's pieces as one cap.
-    std::vector<ShaderDefine> lobe_disk_defines;
-    const std::vector<ShaderDefine>* disks = &disk_defines;
+    const std::vector<ShaderDefine>* disks = &pass_disks.all;
     if (ibl && !mirror && !settings.environment_lights.empty() &&
         !scene.has_texture(material, TextureSlot::metallic_roughness) && disks_at_own_roughness) {
-        const std::vector<DiskLight> merged = disks_for_lobe(settings.environment_lights, m.roughness);
-        if (merged.size() < settings.environment_lights.size()) {
-            auto merged_defines = disk_light_defines(merged, "the forward pass");
-            if (!merged_defines) return merged_defines.error();
-            lobe_disk_defines = std::move(*merged_defines);
-            disks = &lobe_disk_defines;
+        auto found = pass_disks.by_roughness.find(m.roughness);
+        if (found == pass_disks.by_roughness.end()) {
+            const std::vector<DiskLight> merged = disks_for_lobe(settings.environment_lights, m.roughness);
+            std::vector<ShaderDefine> merged_defines = pass_disks.all;
+            if (merged.size() < settings.environment_lights.size()) {
+                auto made = disk_light_defines(merged, "the forward pass");
+                if (!made) return made.error();
+                merged_defines = std::move(*made);
+            }
+            found = pass_disks.by_roughness.emplace(m.roughness, std::move(merged_defines)).first;
         }
+        disks = &found->second;
     }
     // The fitted lookups where the material reaches a group that needs them.
     bool bend = false;
@@ -275,16 +278,16 @@ Result<std::vector<const Pipeline*>> ForwardRenderer::pipelines(const GpuScene& 
                                                                 bool opaque_background) {
     const Scene& scene = gpu.scene();
     // The disks as constants of every material's pipeline, written once for the pass.
-    std::vector<ShaderDefine> disk_defines;
+    PassDisks disks;
     if (ibl) {
         auto defines = disk_light_defines(s.environment_lights, "the forward pass");
         if (!defines) return defines.error();
-        disk_defines = std::move(*defines);
+        disks.all = std::move(*defines);
     }
     std::vector<const Pipeline*> out(scene.instances.size(), nullptr);
     for (uint32_t i = 0; i < scene.instances.size(); ++i) {
         if (opaque_background && !in_transmission_background(scene, i)) continue;
-        auto p = material_pipeline(gpu, i, view, target, ibl, s, disk_defines);
+        auto p = material_pipeline(gpu, i, view, target, ibl, s, disks);
         if (!p) return p.error();
         out[i] = *p;
     }

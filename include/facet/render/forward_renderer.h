@@ -6,6 +6,7 @@
 // component view (AOV). add_passes() composes them into the programs' frame. An engine
 // can stop at linear HDR: add_forward_pass() alone.
 #include <array>
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
@@ -155,10 +156,16 @@ private:
     struct Slot {
         Buffer frame, lights;
     };
-    // disk_defines: the extracted disks as the pipeline's constants (made once per pass by pipelines()).
+    // The extracted disks as pipeline constants, made once per pass by pipelines(): all of
+    // them, and those a lobe of each roughness tells apart (render/lobe_disks.h), filled as
+    // materials of that roughness ask (a grid of spheres has 49 instances and 7 roughnesses).
+    struct PassDisks {
+        std::vector<ShaderDefine> all;
+        std::map<float, std::vector<ShaderDefine>> by_roughness;
+    };
     Result<const Pipeline*> material_pipeline(const GpuScene& scene, uint32_t instance, View view,
                                               const Target& target, bool ibl, const FrameSettings& settings,
-                                              const std::vector<ShaderDefine>& disk_defines);
+                                              PassDisks& disks);
     // `opaque_background`: only the instances the transmission background draws (the others null).
     Result<std::vector<const Pipeline*>> pipelines(const GpuScene& scene, View view, const Target& target,
                                                    bool ibl, const FrameSettings& settings,
