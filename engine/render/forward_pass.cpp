@@ -210,9 +210,9 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     // A material whose roughness is a constant of its pipeline (no roughness texture, no layer
     // or lobe of another roughness reading the disks) gets the disks its lobe tells apart
     // (render/lobe_disks.h): a rough lobe integrates a softbox's pieces as one cap.
+    const bool constant_roughness = !scene.has_texture(material, TextureSlot::metallic_roughness);
     const std::vector<ShaderDefine>* disks = &pass_disks.all;
-    if (ibl && !mirror && !settings.environment_lights.empty() &&
-        !scene.has_texture(material, TextureSlot::metallic_roughness) && disks_at_own_roughness) {
+    if (ibl && !mirror && !settings.environment_lights.empty() && constant_roughness && disks_at_own_roughness) {
         auto found = pass_disks.by_roughness.find(m.roughness);
         if (found == pass_disks.by_roughness.end()) {
             const std::vector<DiskLight> merged = disks_for_lobe(settings.environment_lights, m.roughness);
@@ -230,7 +230,11 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     bool bend = false;
     const std::array<bool, 8> reached = material_shading_groups(m);
     for (size_t g = 0; g < reached.size(); ++g) bend = bend || (reached[g] && settings.dominant_groups[g]);
-    define_if(ibl && settings.dominant_direction && bend && !mirror, "DOMINANT_DIRECTION");
+    const bool fitted = ibl && settings.dominant_direction && bend && !mirror;
+    define_if(fitted, "DOMINANT_DIRECTION");
+    // Two fitted lookups where the roughness is a constant of 0.6 or more (render/specular_lobes.h).
+    define_if(fitted && constant_roughness && std::clamp(m.roughness, 0.0f, 1.0f) >= kTwoLookupsRoughness,
+              "FACET_TWO_LOOKUPS");
     define_if(settings.flat_floor, "FLAT_FLOOR");
     if (!mirror) defines.insert(defines.end(), disks->begin(), disks->end());
     defines.push_back({"VIEW", std::to_string(int(view))});

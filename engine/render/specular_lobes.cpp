@@ -8,7 +8,7 @@
 
 namespace facet {
 
-static_assert(kSpecularLobeTableWidth == 2 * kSpecularLobeColumns);
+static_assert(kSpecularLobeTableWidth == 3 * kSpecularLobeColumns);
 static_assert(kSpecularLobeTableHeight == kSpecularLobeModels * kSpecularLobeRows);
 
 std::vector<float> specular_lobe_table_texels() {
@@ -20,6 +20,14 @@ std::vector<float> specular_lobe_table_texels() {
                 const std::size_t y = std::size_t(model * kSpecularLobeRows + row);
                 float* directions = &texels[(y * kSpecularLobeTableWidth + std::size_t(column)) * 4];
                 float* widths = &texels[(y * kSpecularLobeTableWidth + std::size_t(kSpecularLobeColumns + column)) * 4];
+                float* two = &texels[(y * kSpecularLobeTableWidth + std::size_t(2 * kSpecularLobeColumns + column)) * 4];
+                for (int lookup = 0; lookup < 2; ++lookup) {
+                    const float* e =
+                        kSpecularLobeTwoEntries[((model * kSpecularLobeRows + row) * kSpecularLobeColumns + column) * 2 + lookup];
+                    const double a = std::sin(double(e[0]) * theta), b = std::sin((1.0 - double(e[0])) * theta);
+                    two[lookup] = float(a / (a + b));
+                    two[2 + lookup] = e[1];
+                }
                 for (int lookup = 0; lookup < 3; ++lookup) {
                     const float* e =
                         kSpecularLobeEntries[((model * kSpecularLobeRows + row) * kSpecularLobeColumns + column) * 3 + lookup];
@@ -38,12 +46,19 @@ float lowest_lookup_roughness(float roughness) {
     // row's lookups by roughness / 0.2; no lookup reads below 0.35 x the surface's roughness.
     const int first_row = roughness < 0.2f ? 0 : std::min(int((roughness - 0.2f) * 10.0f + 1e-4f), kSpecularLobeRows - 1);
     const float scale = roughness < 0.2f ? std::max(roughness, 0.0f) / 0.2f : 1.0f;
+    // The two lookups' rows from kTwoLookupsRoughness up (surfaces there may use them).
+    const int first_two_row = std::max(first_row, int((kTwoLookupsRoughness - 0.2f) * 10.0f + 1e-4f));
     float lowest = roughness;
     for (int model = 0; model < kSpecularLobeModels; ++model)
-        for (int row = first_row; row < kSpecularLobeRows; ++row)
+        for (int row = first_row; row < kSpecularLobeRows; ++row) {
             for (int i = 0; i < kSpecularLobeColumns * 3; ++i)
                 lowest = std::min(lowest, std::max(scale * kSpecularLobeEntries[(model * kSpecularLobeRows + row) * kSpecularLobeColumns * 3 + i][1],
                                                    0.35f * roughness));
+            if (row < first_two_row) continue;
+            for (int i = 0; i < kSpecularLobeColumns * 2; ++i)
+                lowest = std::min(lowest, std::max(kSpecularLobeTwoEntries[(model * kSpecularLobeRows + row) * kSpecularLobeColumns * 2 + i][1],
+                                                   0.35f * roughness));
+        }
     return lowest;
 }
 

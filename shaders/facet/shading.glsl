@@ -730,8 +730,17 @@ struct FacetSpecularLookups {
 // (t0, t1, t2, w0) and (r0, r1, r2, w1).
 void facet_lobe_entries(sampler2D lobe_table, uint brdf, float x, float y, out vec4 directions, out vec4 widths) {
     float v = (float(brdf) * 9.0 + 0.5 + y) / 18.0;
-    directions = textureLod(lobe_table, vec2((0.5 + x) / 18.0, v), 0.0);
-    widths = textureLod(lobe_table, vec2((9.5 + x) / 18.0, v), 0.0);
+    directions = textureLod(lobe_table, vec2((0.5 + x) / 27.0, v), 0.0);
+    widths = textureLod(lobe_table, vec2((9.5 + x) / 27.0, v), 0.0);
+}
+
+// The table's column coordinate x at n.v: n.v 0.1 .. 0.9 by 0.1, clamped (the lookups meet at
+// R = n as n.v -> 1).
+float facet_lobe_column(float NdotV) { return clamp((NdotV - 0.1) * 10.0, 0.0, 8.0); }
+
+// The two lookups' texel (t0, t1, r0, r1), the table's third block.
+vec4 facet_two_lobe_entry(sampler2D lobe_table, uint brdf, float x, float y) {
+    return textureLod(lobe_table, vec2((18.5 + x) / 27.0, (float(brdf) * 9.0 + 0.5 + y) / 18.0), 0.0);
 }
 
 FacetSpecularLookups facet_specular_lookups(FacetSurface s, vec3 v, float NdotV, float specular_levels,
@@ -753,7 +762,7 @@ FacetSpecularLookups facet_specular_lookups(FacetSurface s, vec3 v, float NdotV,
     // Table coordinates: roughness 0.2 .. 1 by 0.1 (below 0.2 the first row, its lookups
     // drawn towards R and its roughness scaled with the surface's, so that a mirror reads R
     // at level 0), n.v 0.1 .. 0.9 by 0.1 (clamped: the lookups meet at R = n as n.v -> 1).
-    float x = clamp((NdotV - 0.1) * 10.0, 0.0, 8.0);
+    float x = facet_lobe_column(NdotV);
     float y = clamp((s.roughness - 0.2) * 10.0, 0.0, 8.0);
     float below = clamp(s.roughness / 0.2, 0.0, 1.0);
     vec4 directions, widths;
@@ -766,6 +775,26 @@ FacetSpecularLookups facet_specular_lookups(FacetSurface s, vec3 v, float NdotV,
         k.lod[i] = facet_specular_lod(max(widths[i] * below, 0.35 * s.roughness), specular_levels);
         k.weight[i] = weights[i];
     }
+    return k;
+}
+
+// Two lookups of equal weight fitted like the three (facet_specular_lookups; one table read
+// and one cube read fewer), for surfaces of roughness kTwoLookupsRoughness (0.6) and rougher
+// (include/facet/render/specular_lobes.h): below it they leave the image outside its targets.
+// The third lookup weighs 0, which the compiler folds away.
+FacetSpecularLookups facet_two_specular_lookups(FacetSurface s, vec3 v, float NdotV, float specular_levels,
+                                                sampler2D lobe_table) {
+    vec4 e = facet_two_lobe_entry(lobe_table, s.brdf, facet_lobe_column(NdotV), clamp((s.roughness - 0.2) * 10.0, 0.0, 8.0));
+    vec3 R = reflect(-v, s.n);
+    FacetSpecularLookups k;
+    for (int i = 0; i < 2; ++i) {
+        k.direction[i] = normalize(mix(s.n, R, e[i]));
+        k.lod[i] = facet_specular_lod(max(e[2 + i], 0.35 * s.roughness), specular_levels);
+        k.weight[i] = 0.5;
+    }
+    k.direction[2] = R;
+    k.lod[2] = 0.0;
+    k.weight[2] = 0.0;
     return k;
 }
 

@@ -272,6 +272,71 @@ TEST_F(ForwardRenderTest, MergedDisksOfARoughLobeMatchTheDisksApart) {
     EXPECT_LT(worst, 0.05);
 }
 
+// A material of constant roughness 0.6 or more reads two fitted lookups (FACET_TWO_LOOKUPS,
+// render/specular_lobes.h) where a roughness texture keeps the three: under a sunset sky a
+// roughness-0.8 metal against the same material with a white roughness texture. The two
+// fits follow the same lobe (their accuracy against the truth: AccuracyTargets), so the
+// frames differ by the fits' difference alone.
+TEST_F(ForwardRenderTest, TwoLookupsOfARoughMaterialFollowTheThree) {
+    auto frame = [&](bool textured) {
+        std::string sunset = FACET_SHARED_DATA_DIR "/env/";  // appended (GCC 12's false -Wstringop-overflow)
+        sunset += "venice_sunset_1k.hdr";
+        RenderJob job = small_job("builtin:sphere", sunset);
+        job.frame.skybox = false;
+        job.frame.samples = 1;
+        job.shading = ShadingMethod::lights_dominant;
+        Scene scene = builtin_scene("builtin:sphere", std::nullopt).value();
+        Material& m = scene.materials[0];
+        m.base_color = glm::vec4(0.9f, 0.9f, 0.9f, 1.0f);
+        m.metallic = 1.0f;
+        m.roughness = 0.8f;
+        if (textured) {
+            TextureImage white;
+            white.name = "white";
+            white.width = white.height = white.source_width = white.source_height = 1;
+            white.rgba = {255, 255, 255, 255};
+            scene.images.push_back(white);
+            m.metallic_roughness_texture.image = 0;
+        }
+        auto session = RenderSession::create(ctx(), job, std::move(scene));
+        EXPECT_TRUE(session) << (session ? "" : session.error().message);
+        if (!session) return RenderedImages{};
+        auto images = (*session)->render_frame();
+        EXPECT_TRUE(images) << (images ? "" : images.error().message);
+        return images ? *images : RenderedImages{};
+    };
+    const RenderedImages two = frame(false);
+    const RenderedImages three = frame(true);
+    ASSERT_EQ(two.hdr.size(), 64u * 64u * 4u);
+    ASSERT_EQ(three.hdr.size(), two.hdr.size());
+    // The sphere's disk on screen (its centroid and radius from its coverage), and pixels
+    // within 0.9 of its radius: n.v above about 0.4, as issue 13's measure (n.v > 0.3; at the
+    // rim, where the table holds n.v 0.1, the fits part by up to 12%).
+    double cx = 0, cy = 0, area = 0;
+    for (size_t i = 0; i < two.hdr.size(); i += 4)
+        if (two.hdr[i + 3] >= 1.0f) cx += double((i / 4) % 64) + 0.5, cy += double((i / 4) / 64) + 0.5, area += 1;
+    ASSERT_GT(area, 1000);
+    cx /= area, cy /= area;
+    const double radius = std::sqrt(area / 3.14159265358979);
+    double sum = 0, worst = 0;
+    int covered = 0, differ = 0;
+    for (size_t i = 0; i < two.hdr.size(); i += 4) {
+        const double dx = double((i / 4) % 64) + 0.5 - cx, dy = double((i / 4) / 64) + 0.5 - cy;
+        if (two.hdr[i + 3] < 1.0f || dx * dx + dy * dy > 0.81 * radius * radius) continue;
+        const double a = 0.2126 * three.hdr[i] + 0.7152 * three.hdr[i + 1] + 0.0722 * three.hdr[i + 2];
+        const double b = 0.2126 * two.hdr[i] + 0.7152 * two.hdr[i + 1] + 0.0722 * two.hdr[i + 2];
+        ASSERT_TRUE(std::isfinite(b) && b >= 0.0) << "pixel " << i / 4;
+        const double e = std::abs(b - a) / std::max(a, 1e-6);
+        sum += e, worst = std::max(worst, e), ++covered, differ += e > 1e-4;
+    }
+    ASSERT_GT(covered, 800);
+    std::printf("roughness 0.8 metal under venice_sunset: two lookups against three mean %.3f%%, max %.3f%%\n",
+                100 * sum / covered, 100 * worst);
+    EXPECT_GT(differ, covered / 4) << "the same lookups in both: FACET_TWO_LOOKUPS not compiled in";
+    EXPECT_LT(sum / covered, 0.02);
+    EXPECT_LT(worst, 0.08);
+}
+
 // The benchmark's floor (FrameSettings::flat_floor): every covered pixel is the material's
 // base colour factor, whatever the light; the background stays empty.
 TEST_F(ForwardRenderTest, FlatFloorWritesTheBaseColourFactor) {

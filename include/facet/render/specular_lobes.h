@@ -10,16 +10,24 @@
 
 namespace facet {
 
-inline constexpr uint32_t kSpecularLobeTableWidth = 18;   // 2 texels x 9 n.v columns (0.1 .. 0.9)
+inline constexpr uint32_t kSpecularLobeTableWidth = 27;   // 3 texels x 9 n.v columns (0.1 .. 0.9)
 inline constexpr uint32_t kSpecularLobeTableHeight = 18;  // 2 BRDF models x 9 roughness rows (0.2 .. 1)
 
-// RGBA texels, row 0 first, two per entry so that the shader reads them with two fetches:
-// texel (column, model * 9 + row) holds (t0, t1, t2, w0) and texel (9 + column, model * 9 +
-// row) (r0, r1, r2, w1); lookup k reads along normalize(mix(n, R, t_k)) at roughness r_k with
-// weight w_k, w2 = 1 - w0 - w1 (the fit's weights sum to 1). t_k is the fit's fraction s_k of
-// the angle theta = acos(n.v) from n to R turned into the linear weight that reaches the
-// same direction at the column's n.v, sin(s theta) / (sin(s theta) + sin((1 - s) theta)),
-// so that the shader needs no trigonometry.
+// Surfaces of this roughness and rougher may use two lookups of equal weight instead of
+// three (fitted alike: scripts/fit_specular_lobes.py --two): one table read and one cube read
+// fewer. The forward pass does so where a material's roughness is a constant of its pipeline.
+// Below it two lookups leave the image outside its targets (docs/accuracy.md: venice_sunset's
+// [0.4,0.6) metal 4.0%); from it up they keep every group within them.
+inline constexpr float kTwoLookupsRoughness = 0.6f;
+
+// RGBA texels, row 0 first, three per entry so that the shader reads them with two fetches
+// (three lookups) or one (two): texel (column, model * 9 + row) holds (t0, t1, t2, w0), texel
+// (9 + column, model * 9 + row) (r0, r1, r2, w1) and texel (18 + column, model * 9 + row) the
+// two lookups' (t0, t1, r0, r1); lookup k reads along normalize(mix(n, R, t_k)) at roughness
+// r_k with weight w_k, w2 = 1 - w0 - w1 (the fit's weights sum to 1; the two lookups weigh
+// one half each). t_k is the fit's fraction s_k of the angle theta = acos(n.v) from n to R
+// turned into the linear weight that reaches the same direction at the column's n.v,
+// sin(s theta) / (sin(s theta) + sin((1 - s) theta)), so that the shader needs no trigonometry.
 std::vector<float> specular_lobe_table_texels();
 
 // The smallest roughness that the fitted lookups of any surface at `roughness` or rougher
