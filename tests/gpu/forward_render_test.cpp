@@ -57,6 +57,39 @@ protected:
         if (keep) *keep = std::move(*session);
         return images ? *images : RenderedImages{};
     }
+    // A grey metal sphere (0.9) of the given roughness under a shared environment file,
+    // without a skybox, 1x; `textured`: the same roughness through a white
+    // metallic-roughness texture, so that it is not a constant of the pipeline. `disks`:
+    // the session's extracted lights.
+    RenderedImages rough_metal_frame(const char* env_file, ShadingMethod shading, float roughness, bool textured,
+                                     size_t* disks = nullptr) {
+        std::string env = FACET_SHARED_DATA_DIR "/env/";  // appended (GCC 12's false -Wstringop-overflow)
+        env += env_file;
+        RenderJob job = small_job("builtin:sphere", env);
+        job.frame.skybox = false;
+        job.frame.samples = 1;
+        job.shading = shading;
+        Scene scene = builtin_scene("builtin:sphere", std::nullopt).value();
+        Material& m = scene.materials[0];
+        m.base_color = glm::vec4(0.9f, 0.9f, 0.9f, 1.0f);
+        m.metallic = 1.0f;
+        m.roughness = roughness;
+        if (textured) {
+            TextureImage white;
+            white.name = "white";
+            white.width = white.height = white.source_width = white.source_height = 1;
+            white.rgba = {255, 255, 255, 255};
+            scene.images.push_back(white);
+            m.metallic_roughness_texture.image = 0;
+        }
+        auto session = RenderSession::create(ctx(), job, std::move(scene));
+        EXPECT_TRUE(session) << (session ? "" : session.error().message);
+        if (!session) return {};
+        if (disks) *disks = (*session)->frame().environment_lights.size();
+        auto images = (*session)->render_frame();
+        EXPECT_TRUE(images) << (images ? "" : images.error().message);
+        return images ? *images : RenderedImages{};
+    }
     RenderedImages render(const RenderJob& job, Scene scene) {
         auto session = RenderSession::create(ctx(), job, std::move(scene));
         EXPECT_TRUE(session) << (session ? "" : session.error().message);
@@ -220,37 +253,10 @@ TEST_F(ForwardRenderTest, AMirrorNeedsNeitherTheDisksNorTheFittedLookups) {
 // softbox pieces merged. The same material with a white metallic-roughness texture (the same
 // roughness, but not a constant of its pipeline) shades every disk: the two frames agree.
 TEST_F(ForwardRenderTest, MergedDisksOfARoughLobeMatchTheDisksApart) {
-    auto frame = [&](bool textured, size_t* disks) {
-        std::string studio = FACET_SHARED_DATA_DIR "/env/";  // appended (GCC 12's false -Wstringop-overflow)
-        studio += "studio_small_03_1k.hdr";
-        RenderJob job = small_job("builtin:sphere", studio);
-        job.frame.skybox = false;
-        job.frame.samples = 1;
-        job.shading = ShadingMethod::lights;
-        Scene scene = builtin_scene("builtin:sphere", std::nullopt).value();
-        Material& m = scene.materials[0];
-        m.base_color = glm::vec4(0.9f, 0.9f, 0.9f, 1.0f);
-        m.metallic = 1.0f;
-        m.roughness = 0.8f;
-        if (textured) {
-            TextureImage white;
-            white.name = "white";
-            white.width = white.height = white.source_width = white.source_height = 1;
-            white.rgba = {255, 255, 255, 255};
-            scene.images.push_back(white);
-            m.metallic_roughness_texture.image = 0;
-        }
-        auto session = RenderSession::create(ctx(), job, std::move(scene));
-        EXPECT_TRUE(session) << (session ? "" : session.error().message);
-        if (!session) return RenderedImages{};
-        *disks = (*session)->frame().environment_lights.size();
-        auto images = (*session)->render_frame();
-        EXPECT_TRUE(images) << (images ? "" : images.error().message);
-        return images ? *images : RenderedImages{};
-    };
     size_t disks = 0, textured_disks = 0;
-    const RenderedImages merged = frame(false, &disks);
-    const RenderedImages apart = frame(true, &textured_disks);
+    const RenderedImages merged = rough_metal_frame("studio_small_03_1k.hdr", ShadingMethod::lights, 0.8f, false, &disks);
+    const RenderedImages apart =
+        rough_metal_frame("studio_small_03_1k.hdr", ShadingMethod::lights, 0.8f, true, &textured_disks);
     ASSERT_EQ(disks, textured_disks);
     EXPECT_GE(disks, 4u) << "the studio's softboxes in pieces";
     ASSERT_EQ(merged.hdr.size(), 64u * 64u * 4u);
@@ -278,35 +284,8 @@ TEST_F(ForwardRenderTest, MergedDisksOfARoughLobeMatchTheDisksApart) {
 // fits follow the same lobe (their accuracy against the truth: AccuracyTargets), so the
 // frames differ by the fits' difference alone.
 TEST_F(ForwardRenderTest, TwoLookupsOfARoughMaterialFollowTheThree) {
-    auto frame = [&](bool textured) {
-        std::string sunset = FACET_SHARED_DATA_DIR "/env/";  // appended (GCC 12's false -Wstringop-overflow)
-        sunset += "venice_sunset_1k.hdr";
-        RenderJob job = small_job("builtin:sphere", sunset);
-        job.frame.skybox = false;
-        job.frame.samples = 1;
-        job.shading = ShadingMethod::lights_dominant;
-        Scene scene = builtin_scene("builtin:sphere", std::nullopt).value();
-        Material& m = scene.materials[0];
-        m.base_color = glm::vec4(0.9f, 0.9f, 0.9f, 1.0f);
-        m.metallic = 1.0f;
-        m.roughness = 0.8f;
-        if (textured) {
-            TextureImage white;
-            white.name = "white";
-            white.width = white.height = white.source_width = white.source_height = 1;
-            white.rgba = {255, 255, 255, 255};
-            scene.images.push_back(white);
-            m.metallic_roughness_texture.image = 0;
-        }
-        auto session = RenderSession::create(ctx(), job, std::move(scene));
-        EXPECT_TRUE(session) << (session ? "" : session.error().message);
-        if (!session) return RenderedImages{};
-        auto images = (*session)->render_frame();
-        EXPECT_TRUE(images) << (images ? "" : images.error().message);
-        return images ? *images : RenderedImages{};
-    };
-    const RenderedImages two = frame(false);
-    const RenderedImages three = frame(true);
+    const RenderedImages two = rough_metal_frame("venice_sunset_1k.hdr", ShadingMethod::lights_dominant, 0.8f, false);
+    const RenderedImages three = rough_metal_frame("venice_sunset_1k.hdr", ShadingMethod::lights_dominant, 0.8f, true);
     ASSERT_EQ(two.hdr.size(), 64u * 64u * 4u);
     ASSERT_EQ(three.hdr.size(), two.hdr.size());
     // The sphere's disk on screen (its centroid and radius from its coverage), and pixels
