@@ -11,6 +11,14 @@ namespace facet {
 static_assert(kSpecularLobeTableWidth == 3 * kSpecularLobeColumns);
 static_assert(kSpecularLobeTableHeight == kSpecularLobeModels * kSpecularLobeRows);
 
+namespace {
+// The linear weight between n and R that reaches the fit's fraction s of the angle theta.
+float axis_weight(float s, double theta) {
+    const double a = std::sin(double(s) * theta), b = std::sin((1.0 - double(s)) * theta);
+    return float(a / (a + b));
+}
+}  // namespace
+
 std::vector<float> specular_lobe_table_texels() {
     std::vector<float> texels(std::size_t(kSpecularLobeTableWidth) * kSpecularLobeTableHeight * 4, 0.0f);
     for (int model = 0; model < kSpecularLobeModels; ++model)
@@ -24,15 +32,13 @@ std::vector<float> specular_lobe_table_texels() {
                 for (int lookup = 0; lookup < 2; ++lookup) {
                     const float* e =
                         kSpecularLobeTwoEntries[((model * kSpecularLobeRows + row) * kSpecularLobeColumns + column) * 2 + lookup];
-                    const double a = std::sin(double(e[0]) * theta), b = std::sin((1.0 - double(e[0])) * theta);
-                    two[lookup] = float(a / (a + b));
+                    two[lookup] = axis_weight(e[0], theta);
                     two[2 + lookup] = e[1];
                 }
                 for (int lookup = 0; lookup < 3; ++lookup) {
                     const float* e =
                         kSpecularLobeEntries[((model * kSpecularLobeRows + row) * kSpecularLobeColumns + column) * 3 + lookup];
-                    const double a = std::sin(double(e[0]) * theta), b = std::sin((1.0 - double(e[0])) * theta);
-                    directions[lookup] = float(a / (a + b));
+                    directions[lookup] = axis_weight(e[0], theta);
                     widths[lookup] = e[1];
                 }
                 directions[3] = kSpecularLobeEntries[((model * kSpecularLobeRows + row) * kSpecularLobeColumns + column) * 3][2];
@@ -49,15 +55,13 @@ float lowest_lookup_roughness(float roughness) {
     // The two lookups' rows from kTwoLookupsRoughness up (surfaces there may use them).
     const int first_two_row = std::max(first_row, int((kTwoLookupsRoughness - 0.2f) * 10.0f + 1e-4f));
     float lowest = roughness;
+    auto read = [&](float width) { lowest = std::min(lowest, std::max(scale * width, 0.35f * roughness)); };
     for (int model = 0; model < kSpecularLobeModels; ++model)
         for (int row = first_row; row < kSpecularLobeRows; ++row) {
-            for (int i = 0; i < kSpecularLobeColumns * 3; ++i)
-                lowest = std::min(lowest, std::max(scale * kSpecularLobeEntries[(model * kSpecularLobeRows + row) * kSpecularLobeColumns * 3 + i][1],
-                                                   0.35f * roughness));
+            const int entry = (model * kSpecularLobeRows + row) * kSpecularLobeColumns;
+            for (int i = 0; i < kSpecularLobeColumns * 3; ++i) read(kSpecularLobeEntries[entry * 3 + i][1]);
             if (row < first_two_row) continue;
-            for (int i = 0; i < kSpecularLobeColumns * 2; ++i)
-                lowest = std::min(lowest, std::max(kSpecularLobeTwoEntries[(model * kSpecularLobeRows + row) * kSpecularLobeColumns * 2 + i][1],
-                                                   0.35f * roughness));
+            for (int i = 0; i < kSpecularLobeColumns * 2; ++i) read(kSpecularLobeTwoEntries[entry * 2 + i][1]);
         }
     return lowest;
 }

@@ -738,9 +738,24 @@ void facet_lobe_entries(sampler2D lobe_table, uint brdf, float x, float y, out v
 // R = n as n.v -> 1).
 float facet_lobe_column(float NdotV) { return clamp((NdotV - 0.1) * 10.0, 0.0, 8.0); }
 
+// The table's row coordinate y at a roughness: 0.2 .. 1 by 0.1 (below 0.2 the first row).
+float facet_lobe_row(float roughness) { return clamp((roughness - 0.2) * 10.0, 0.0, 8.0); }
+
 // The two lookups' texel (t0, t1, r0, r1), the table's third block.
 vec4 facet_two_lobe_entry(sampler2D lobe_table, uint brdf, float x, float y) {
     return textureLod(lobe_table, vec2((18.5 + x) / 27.0, (float(brdf) * 9.0 + 0.5 + y) / 18.0), 0.0);
+}
+
+// One fitted lookup from its table entry: the axis between n and R at the linear weight t
+// (which stands for the fitted angle), at the roughness `width`. Below roughness 0.2 the
+// first row's lookups are drawn towards R and their roughness scaled with the surface's,
+// so that a mirror reads R at level 0. (A few lookups of negligible weight were fitted
+// narrower: none reads below 0.35 r.)
+void facet_fitted_lookup(FacetSurface s, vec3 R, float t, float width, float specular_levels, out vec3 direction,
+                         out float lod) {
+    float below = clamp(s.roughness / 0.2, 0.0, 1.0);
+    direction = normalize(mix(s.n, R, mix(1.0, t, below)));
+    lod = facet_specular_lod(max(width * below, 0.35 * s.roughness), specular_levels);
 }
 
 FacetSpecularLookups facet_specular_lookups(FacetSurface s, vec3 v, float NdotV, float specular_levels,
@@ -759,20 +774,11 @@ FacetSpecularLookups facet_specular_lookups(FacetSurface s, vec3 v, float NdotV,
         k.weight[i] = i == 0 ? 1.0 : 0.0;
     }
     if (!fitted) return k;
-    // Table coordinates: roughness 0.2 .. 1 by 0.1 (below 0.2 the first row, its lookups
-    // drawn towards R and its roughness scaled with the surface's, so that a mirror reads R
-    // at level 0), n.v 0.1 .. 0.9 by 0.1 (clamped: the lookups meet at R = n as n.v -> 1).
-    float x = facet_lobe_column(NdotV);
-    float y = clamp((s.roughness - 0.2) * 10.0, 0.0, 8.0);
-    float below = clamp(s.roughness / 0.2, 0.0, 1.0);
     vec4 directions, widths;
-    facet_lobe_entries(lobe_table, s.brdf, x, y, directions, widths);
+    facet_lobe_entries(lobe_table, s.brdf, facet_lobe_column(NdotV), facet_lobe_row(s.roughness), directions, widths);
     vec3 weights = vec3(directions.w, widths.w, 1.0 - directions.w - widths.w);
     for (int i = 0; i < 3; ++i) {
-        // The axis between n and R (the table's linear weight stands for the fitted angle).
-        k.direction[i] = normalize(mix(s.n, R, mix(1.0, directions[i], below)));
-        // (A few lookups of negligible weight were fitted narrower: none reads below 0.35 r.)
-        k.lod[i] = facet_specular_lod(max(widths[i] * below, 0.35 * s.roughness), specular_levels);
+        facet_fitted_lookup(s, R, directions[i], widths[i], specular_levels, k.direction[i], k.lod[i]);
         k.weight[i] = weights[i];
     }
     return k;
@@ -784,12 +790,11 @@ FacetSpecularLookups facet_specular_lookups(FacetSurface s, vec3 v, float NdotV,
 // The third lookup weighs 0, which the compiler folds away.
 FacetSpecularLookups facet_two_specular_lookups(FacetSurface s, vec3 v, float NdotV, float specular_levels,
                                                 sampler2D lobe_table) {
-    vec4 e = facet_two_lobe_entry(lobe_table, s.brdf, facet_lobe_column(NdotV), clamp((s.roughness - 0.2) * 10.0, 0.0, 8.0));
+    vec4 e = facet_two_lobe_entry(lobe_table, s.brdf, facet_lobe_column(NdotV), facet_lobe_row(s.roughness));
     vec3 R = reflect(-v, s.n);
     FacetSpecularLookups k;
     for (int i = 0; i < 2; ++i) {
-        k.direction[i] = normalize(mix(s.n, R, e[i]));
-        k.lod[i] = facet_specular_lod(max(e[2 + i], 0.35 * s.roughness), specular_levels);
+        facet_fitted_lookup(s, R, e[i], e[2 + i], specular_levels, k.direction[i], k.lod[i]);
         k.weight[i] = 0.5;
     }
     k.direction[2] = R;
