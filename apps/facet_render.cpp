@@ -106,6 +106,10 @@ std::string describe(const Options& o, const RenderSession& session, const Rende
     j.begin_array("unbent_groups");
     for (const std::string& g : shading.unbent_groups) j.value({}, g);
     j.end_array();
+    // The groups below roughness 0.6 whose materials read two fitted lookups instead of three.
+    j.begin_array("two_lookup_groups");
+    for (const std::string& g : shading.two_lookup_groups) j.value({}, g);
+    j.end_array();
     j.end_object();
     j.value("lights", uint32_t(f.lights.size()));
     j.begin_array("warnings");  // what the model's loader met but does not draw (Scene::warnings)

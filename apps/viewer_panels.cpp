@@ -139,9 +139,13 @@ void draw_panels(ViewerControls& c) {
                            "predicted error %.1f%% (target %.1f%%), worst: %s", 100 * *c.shading.predicted_error,
                            100 * c.shading.target_error, c.shading.predicted_worst_group.c_str());
         for (const GroupErrorPrediction& g : c.shading.predicted_groups) {
-            const auto& unbent = c.shading.unbent_groups;
-            const bool along_r = std::find(unbent.begin(), unbent.end(), g.group) != unbent.end();
-            ImGui::Text("  %-30s %5.1f%%%s", g.group.c_str(), 100 * g.error, along_r ? "  (along R)" : "");
+            auto in = [&](const std::vector<std::string>& list) {
+                return std::find(list.begin(), list.end(), g.group) != list.end();
+            };
+            const char* lookup = in(c.shading.unbent_groups)       ? "  (along R)"
+                                 : in(c.shading.two_lookup_groups) ? "  (two lookups)"
+                                                                   : "";
+            ImGui::Text("  %-30s %5.1f%%%s", g.group.c_str(), 100 * g.error, lookup);
         }
     } else {
         ImGui::TextDisabled("predicted error: none (no environment texels to compare with)");

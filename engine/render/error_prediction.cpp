@@ -167,9 +167,12 @@ Result<ShadingPrediction> predict_shading_errors(RenderSession::State& s, std::s
     const auto [lo, hi] = probe.world_bounds();
     f.camera = frame_bounds(lo, hi, glm::radians(45.0f), float(f.width) / float(f.height));
 
-    auto render = [&](ShadingMethod method) -> Result<std::vector<float>> {
+    const FrameSettings defaults;
+    auto render = [&](ShadingMethod method, bool two_lookups) -> Result<std::vector<float>> {
         f.dominant_direction = bends_lookup(method);
         f.dominant_groups.fill(true);  // the method's own error in every group
+        f.two_lookup_groups = defaults.two_lookup_groups;
+        if (two_lookups) f.two_lookup_groups.fill(true);
         f.environment_lights = shades_lights(method) ? s.baked->lights() : std::vector<DiskLight>{};
         f.environment_light_level = s.baked->metadata().light_split_level;
         f.views.clear();
@@ -188,7 +191,7 @@ Result<ShadingPrediction> predict_shading_errors(RenderSession::State& s, std::s
     out.groups = groups;
     std::optional<test::FinalImageTruth> truth;
     for (size_t i = 0; i < methods.size(); ++i) {
-        auto hdr = render(methods[i]);
+        auto hdr = render(methods[i], false);
         if (!hdr) return hdr.error();
         if (!truth) {
             // The probe's geometry and materials are the same for every method: the truth
@@ -204,19 +207,31 @@ Result<ShadingPrediction> predict_shading_errors(RenderSession::State& s, std::s
             truth = test::final_image_truth(views, {eye.x, eye.y, eye.z}, texels, s.frame.brdf, accuracy);
             out.truth_seconds = truth->seconds;
         }
-        const test::FinalImageAccuracy a = test::final_image_accuracy(*truth, *hdr);
+        // A NaN or Inf in the render counts as an infinite error: never within a target.
+        auto group_errors = [&](const std::vector<float>& image) {
+            const test::FinalImageAccuracy a = test::final_image_accuracy(*truth, image);
+            std::array<double, 8> out{};
+            for (size_t g = 0; g < 8; ++g) {
+                const double e = a.groups[g].mean_rel;
+                out[g] = a.groups[g].pixels == 0 ? nan : std::isfinite(e) ? e : inf;
+            }
+            return out;
+        };
         MethodPrediction p;
         p.method = methods[i];
         p.worst = nan;
+        p.group_error = group_errors(*hdr);
         for (size_t g = 0; g < 8; ++g) {
-            // A NaN or Inf in the render counts as an infinite error: never within a target.
-            const double e = a.groups[g].mean_rel;
-            p.group_error[g] = a.groups[g].pixels == 0 ? nan : std::isfinite(e) ? e : inf;
             if (!groups[g] || std::isnan(p.group_error[g])) continue;
             if (p.worst_group < 0 || p.group_error[g] > p.worst) {
                 p.worst = p.group_error[g];
                 p.worst_group = int(g);
             }
+        }
+        if (settings.two_lookups && bends_lookup(methods[i])) {
+            auto two = render(methods[i], true);
+            if (!two) return two.error();
+            p.two_lookup_error = group_errors(*two);
         }
         out.methods.push_back(p);
         // The methods come cheapest first: one within the target ends the search (a dearer

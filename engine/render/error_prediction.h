@@ -7,6 +7,7 @@
 // written from the equations, independent of the shaders the probe runs.
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -23,6 +24,9 @@ struct PredictionSettings {
     // Stop after the first method whose worst group is within this (the methods given
     // cheapest first, the rest are then not predicted); negative: predict every one.
     double stop_within = -1;
+    // A method that bends the lookup is also rendered with two fitted lookups in every group
+    // (FrameSettings::two_lookup_groups all set): MethodPrediction::two_lookup_error.
+    bool two_lookups = false;
 };
 
 // The probe: builtin:spheres (7 x 7, the measure's scene) with the scene's
@@ -43,6 +47,16 @@ struct MethodPrediction {
     std::array<double, 8> group_error{};  // mean relative error of luminance; NaN: no pixel measured
     double worst = 0;                     // over the groups asked for; NaN when none was measured
     int worst_group = -1;
+    // With PredictionSettings::two_lookups and a bending method: each group's error with two
+    // fitted lookups instead of three (the bands from kTwoLookupsRoughness read two in both).
+    // NaN where not predicted.
+    std::array<double, 8> two_lookup_error{nan_errors()};
+
+    static constexpr std::array<double, 8> nan_errors() {
+        std::array<double, 8> a{};
+        for (double& e : a) e = std::numeric_limits<double>::quiet_NaN();
+        return a;
+    }
 };
 
 struct ShadingPrediction {

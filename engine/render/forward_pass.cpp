@@ -226,15 +226,18 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
         }
         disks = &found->second;
     }
-    // The fitted lookups where the material reaches a group that needs them.
-    bool bend = false;
+    // The fitted lookups where the material reaches a group that needs them; two of them
+    // instead of three where every such group allows it (FrameSettings::two_lookup_groups).
+    bool bend = false, two = true;
     const std::array<bool, 8> reached = material_shading_groups(m);
-    for (size_t g = 0; g < reached.size(); ++g) bend = bend || (reached[g] && settings.dominant_groups[g]);
+    for (size_t g = 0; g < reached.size(); ++g) {
+        if (!reached[g] || !settings.dominant_groups[g]) continue;
+        bend = true;
+        two = two && settings.two_lookup_groups[g];
+    }
     const bool fitted = ibl && settings.dominant_direction && bend && !mirror;
     define_if(fitted, "DOMINANT_DIRECTION");
-    // Two fitted lookups where the roughness is a constant of 0.6 or more (render/specular_lobes.h).
-    define_if(fitted && constant_roughness && std::clamp(m.roughness, 0.0f, 1.0f) >= kTwoLookupsRoughness,
-              "FACET_TWO_LOOKUPS");
+    define_if(fitted && two, "FACET_TWO_LOOKUPS");
     define_if(settings.flat_floor, "FLAT_FLOOR");
     if (!mirror) defines.insert(defines.end(), disks->begin(), disks->end());
     defines.push_back({"VIEW", std::to_string(int(view))});

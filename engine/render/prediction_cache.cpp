@@ -17,17 +17,17 @@ namespace facet {
 namespace {
 
 // Bumped with every change to the probe or the measure that the key cannot see.
-constexpr const char* prediction_revision = "prediction-1";
+constexpr const char* prediction_revision = "prediction-2";
 constexpr const char* file_name = "prediction.txt";
 
 std::string cache_key(const RenderSession::State& s, std::span<const ShadingMethod> methods,
                       const PredictionSettings& settings) {
     Hash64 h;
     char text[256];
-    std::snprintf(text, sizeof text, "%s|%s|%s|%d|%u|%u,%u,%u,%u|%.17g|", prediction_revision,
+    std::snprintf(text, sizeof text, "%s|%s|%s|%d|%u|%u,%u,%u,%u|%.17g|%d|", prediction_revision,
                   s.baked->metadata().bake_key.c_str(), brdf_model_name(s.frame.brdf), int(s.frame.multiscatter),
                   s.frame.samples, settings.width, settings.height, settings.truth_env_width, settings.pixels,
-                  settings.stop_within);
+                  settings.stop_within, int(settings.two_lookups));
     h.add(text);
     for (ShadingMethod m : methods) h.add(shading_method_name(m)).add("|");
     for (const Material& m : probe_scene(s.scene).materials) {
@@ -42,7 +42,8 @@ std::string cache_key(const RenderSession::State& s, std::span<const ShadingMeth
     return "prediction-" + h.hex();
 }
 
-// One line of groups, then one line per method: name, worst, worst group, 8 group errors.
+// One line of groups, then one line per method: name, worst, worst group, 8 group errors, the
+// 8 groups' errors with two lookups.
 std::string serialize(const ShadingPrediction& p) {
     std::ostringstream out;
     for (bool g : p.groups) out << (g ? 1 : 0) << ' ';
@@ -52,10 +53,11 @@ std::string serialize(const ShadingPrediction& p) {
         out << shading_method_name(m.method);
         std::snprintf(number, sizeof number, " %.17g %d", m.worst, m.worst_group);
         out << number;
-        for (double e : m.group_error) {
-            std::snprintf(number, sizeof number, " %.17g", e);
-            out << number;
-        }
+        for (const auto* errors : {&m.group_error, &m.two_lookup_error})
+            for (double e : *errors) {
+                std::snprintf(number, sizeof number, " %.17g", e);
+                out << number;
+            }
         out << '\n';
     }
     return out.str();
@@ -84,10 +86,11 @@ std::optional<ShadingPrediction> parse(const std::string& text) {
         if (!(fields >> value)) return std::nullopt;
         m.worst = std::strtod(value.c_str(), nullptr);
         if (!(fields >> m.worst_group)) return std::nullopt;
-        for (double& e : m.group_error) {
-            if (!(fields >> value)) return std::nullopt;
-            e = std::strtod(value.c_str(), nullptr);
-        }
+        for (auto* errors : {&m.group_error, &m.two_lookup_error})
+            for (double& e : *errors) {
+                if (!(fields >> value)) return std::nullopt;
+                e = std::strtod(value.c_str(), nullptr);
+            }
         p.methods.push_back(m);
     }
     if (p.methods.empty()) return std::nullopt;

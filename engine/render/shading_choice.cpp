@@ -103,14 +103,33 @@ CandidatePick choose_shading(std::span<const ShadingCandidate> candidates, doubl
                       ": no method within it, the most accurate (" + others + ")"};
 }
 
-GroupBends choose_group_bends(const std::array<double, 8>& bent, const std::array<double, 8>& plain,
-                              const std::array<bool, 8>& reached, double target_error) {
+GroupBends choose_group_bends(const std::array<double, 8>& bent, const std::array<double, 8>& two,
+                              const std::array<double, 8>& plain, const std::array<bool, 8>& reached,
+                              const std::array<bool, 8>& two_by_default, double within, double target) {
     GroupBends out;
+    out.two = two_by_default;
+    // Along R where the plain lookup is within; the frame's worst with the others bent.
+    double worst_bent = -1;  // none measured
+    for (size_t g = 0; g < 8; ++g) {
+        out.error[g] = bent[g];
+        if (!reached[g]) continue;
+        if (plain[g] <= within) {  // NaN is never within
+            out.bend[g] = false;
+            out.error[g] = plain[g];
+        }
+        if (!std::isnan(out.error[g])) worst_bent = std::max(worst_bent, out.error[g]);
+    }
+    // Two lookups where they are within, or within the tolerance of that worst where it
+    // misses the target.
+    const double bound = worst_bent > target ? kTwoLookupsTolerance * worst_bent : within;
     out.worst = std::numeric_limits<double>::quiet_NaN();
     for (size_t g = 0; g < 8; ++g) {
-        out.bend[g] = !(reached[g] && plain[g] <= target_error);  // NaN is never within
-        out.error[g] = out.bend[g] ? bent[g] : plain[g];
-        if (!reached[g] || std::isnan(out.error[g])) continue;
+        if (!reached[g]) continue;
+        if (out.bend[g] && !two_by_default[g] && two[g] <= std::max(bound, within)) {
+            out.two[g] = true;
+            out.error[g] = two[g];
+        }
+        if (std::isnan(out.error[g])) continue;
         if (out.worst_group < 0 || out.error[g] > out.worst) {
             out.worst = out.error[g];
             out.worst_group = int(g);
@@ -148,7 +167,9 @@ Status choose_session_shading(RenderSession::State& s, const SayFn& say) {
     // The groups that bend the lookup: as the job says (every group unless a host says
     // otherwise), unless the automatic choice decides below.
     s.frame.dominant_groups = r.job.frame.dominant_groups;
+    s.frame.two_lookup_groups = r.job.frame.two_lookup_groups;
     r.choice.unbent_groups.clear();
+    r.choice.two_lookup_groups.clear();
     if (!texels || !wanted) {
         finish_shading_choice(r, lights, m.extracted_power_fraction);
     } else {
@@ -156,7 +177,10 @@ Status choose_session_shading(RenderSession::State& s, const SayFn& say) {
         // Candidates come cheapest first: the automatic choice needs no prediction past the
         // first within the target.
         PredictionSettings settings;
-        if (r.choice.requested == ShadingMethod::automatic) settings.stop_within = r.choice.target_error;
+        if (r.choice.requested == ShadingMethod::automatic) {
+            settings.stop_within = r.choice.target_error;
+            settings.two_lookups = true;
+        }
         bool from_cache = false;
         auto predicted = predict_or_reuse(s, methods, settings, from_cache);
         if (!predicted) return predicted.error();
@@ -186,17 +210,29 @@ Status choose_session_shading(RenderSession::State& s, const SayFn& say) {
             // Within three quarters of the target, not the target itself: the probe's
             // prediction can be a few tenths of a point off the frame's measure (venice_sunset's
             // [0.2,0.4) metal with lights alone: 2.9% predicted, 3.04% measured at 640x360).
+            const FrameSettings defaults;
             for (const MethodPrediction& q : predicted->methods)
-                if (q.method == plain) bends = choose_group_bends(p.group_error, q.group_error, groups,
-                                                                  0.75 * r.choice.target_error);
-            std::string unbent;
-            for (size_t g = 0; g < 8; ++g)
-                if (groups[g] && !bends.bend[g]) r.choice.unbent_groups.push_back(group_label(g));
-            for (const std::string& g : r.choice.unbent_groups) unbent += (unbent.empty() ? "" : ", ") + g;
-            if (!unbent.empty())
+                if (q.method == plain)
+                    bends = choose_group_bends(p.group_error, p.two_lookup_error, q.group_error, groups,
+                                               defaults.two_lookup_groups, 0.75 * r.choice.target_error,
+                                               r.choice.target_error);
+            auto list = [](const std::vector<std::string>& labels) {
+                std::string text;
+                for (const std::string& g : labels) text += (text.empty() ? "" : ", ") + g;
+                return text;
+            };
+            for (size_t g = 0; g < 8; ++g) {
+                if (!groups[g]) continue;
+                if (!bends.bend[g]) r.choice.unbent_groups.push_back(group_label(g));
+                else if (bends.two[g] && !defaults.two_lookup_groups[g]) r.choice.two_lookup_groups.push_back(group_label(g));
+            }
+            if (!r.choice.unbent_groups.empty())
                 r.choice.reason += "; along R where " + std::string(shading_method_name(plain)) +
-                                   " is within 3/4 of the target: " + unbent;
+                                   " is within 3/4 of the target: " + list(r.choice.unbent_groups);
+            if (!r.choice.two_lookup_groups.empty())
+                r.choice.reason += "; two fitted lookups instead of three: " + list(r.choice.two_lookup_groups);
             s.frame.dominant_groups = bends.bend;
+            s.frame.two_lookup_groups = bends.two;
         }
         if (bends.worst_group >= 0) {
             r.choice.predicted_error = bends.worst;
@@ -214,6 +250,7 @@ Status choose_session_shading(RenderSession::State& s, const SayFn& say) {
     }
     r.job.frame.dominant_direction = bends_lookup(r.choice.method);
     r.job.frame.dominant_groups = s.frame.dominant_groups;
+    r.job.frame.two_lookup_groups = s.frame.two_lookup_groups;
     s.frame.dominant_direction = r.job.frame.dominant_direction;
     std::string line = "shading: " + std::string(shading_method_name(r.choice.method)) + " (" + r.choice.reason + ")";
     if (r.choice.predicted_error)

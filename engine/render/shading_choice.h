@@ -50,22 +50,37 @@ struct CandidatePick {
 // `candidates`: UsageError.
 CandidatePick choose_shading(std::span<const ShadingCandidate> candidates, double target_error);
 
+// Where the frame's worst group misses the target with three fitted lookups, every bending
+// group takes two where they are predicted within this factor of that worst: the frame misses
+// its target either way, its worst group grows by at most this factor, and the two cost one
+// table read and one cube read less (a tenth of DamagedHelmet's frame under the rooms, where
+// a textured material reads two only if all its groups do; docs/accuracy.md, "Two lookups
+// where the target is out of reach").
+inline constexpr double kTwoLookupsTolerance = 1.15;
+
 // The lookup per group, once a bending method (lights_dominant, dominant) is chosen
-// automatically: a group reached by the probe (`reached`) whose error with the same method
-// without the bend (`plain`: lights, split_sum) is within `target_error` (the session
-// passes three quarters of its target, a margin for the probe's prediction) reads along R,
-// which costs a third of a split-sum frame less (three cube reads and the fitted table
-// fewer); the others bend. `error` is each group's predicted error with the lookup it
-// uses, `worst` and `worst_group` their largest over the reached groups (NaN and -1 when
-// none was measured). A pure function (the choice is deterministic).
+// automatically, from each group's predicted error with the same method without the bend
+// (`plain`: lights, split_sum), with two fitted lookups (`two`) and with three (`bent`):
+// a group reached by the probe (`reached`) reads along R where `plain` is within `within`
+// (the session passes three quarters of its target, a margin for the probe's prediction),
+// which costs a third of a split-sum frame less; else it bends, with two lookups where
+// `two_by_default` (FrameSettings::two_lookup_groups' defaults: the probe's lookups there
+// are two already), where `two` is within `within`, or, where the reached groups' worst
+// with three (and R where chosen) is over `target`, where `two` is within
+// kTwoLookupsTolerance of that worst; else with three. `error` is each group's predicted
+// error with the lookups it uses, `worst` and `worst_group` their largest over the reached
+// groups (NaN and -1 when none was measured). NaN is never within anything. A pure function
+// (the choice is deterministic).
 struct GroupBends {
     std::array<bool, 8> bend{true, true, true, true, true, true, true, true};
+    std::array<bool, 8> two{};  // of the bending groups, those reading two lookups
     std::array<double, 8> error{};
     double worst = 0;
     int worst_group = -1;
 };
-GroupBends choose_group_bends(const std::array<double, 8>& bent, const std::array<double, 8>& plain,
-                              const std::array<bool, 8>& reached, double target_error);
+GroupBends choose_group_bends(const std::array<double, 8>& bent, const std::array<double, 8>& two,
+                              const std::array<double, 8>& plain, const std::array<bool, 8>& reached,
+                              const std::array<bool, 8>& two_by_default, double within, double target);
 
 // Without a prediction (a saved bake, no environment texels): after the bake, `lights`
 // disks found holding `power_fraction` of the environment's power.

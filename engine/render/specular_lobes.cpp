@@ -52,15 +52,13 @@ float lowest_lookup_roughness(float roughness) {
     // row's lookups by roughness / 0.2; no lookup reads below 0.35 x the surface's roughness.
     const int first_row = roughness < 0.2f ? 0 : std::min(int((roughness - 0.2f) * 10.0f + 1e-4f), kSpecularLobeRows - 1);
     const float scale = roughness < 0.2f ? std::max(roughness, 0.0f) / 0.2f : 1.0f;
-    // The two lookups' rows from kTwoLookupsRoughness up (surfaces there may use them).
-    const int first_two_row = std::max(first_row, int((kTwoLookupsRoughness - 0.2f) * 10.0f + 1e-4f));
     float lowest = roughness;
     auto read = [&](float width) { lowest = std::min(lowest, std::max(scale * width, 0.35f * roughness)); };
     for (int model = 0; model < kSpecularLobeModels; ++model)
         for (int row = first_row; row < kSpecularLobeRows; ++row) {
             const int entry = (model * kSpecularLobeRows + row) * kSpecularLobeColumns;
             for (int i = 0; i < kSpecularLobeColumns * 3; ++i) read(kSpecularLobeEntries[entry * 3 + i][1]);
-            if (row < first_two_row) continue;
+            // Any row's two lookups (FrameSettings::two_lookup_groups may allow them anywhere).
             for (int i = 0; i < kSpecularLobeColumns * 2; ++i) read(kSpecularLobeTwoEntries[entry * 2 + i][1]);
         }
     return lowest;

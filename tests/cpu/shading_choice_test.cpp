@@ -33,7 +33,10 @@ TEST(ShadingChoice, GroupsWithinTheTargetReadAlongR) {
     std::array<bool, 8> reached;
     reached.fill(true);
     reached[7] = false;
-    const GroupBends b = choose_group_bends(bent, plain, reached, 0.0225);
+    std::array<double, 8> two_unmeasured;
+    two_unmeasured.fill(nan);
+    const std::array<bool, 8> no_two{};
+    const GroupBends b = choose_group_bends(bent, two_unmeasured, plain, reached, no_two, 0.0225, 0.03);
     const std::array<bool, 8> expected = {false, true, false, true, true, false, false, true};
     EXPECT_EQ(b.bend, expected);
     EXPECT_DOUBLE_EQ(b.error[0], 0.015);  // along R: the plain lookup's
@@ -45,11 +48,54 @@ TEST(ShadingChoice, GroupsWithinTheTargetReadAlongR) {
     // Nothing measured: no worst.
     std::array<double, 8> none;
     none.fill(nan);
-    const GroupBends n = choose_group_bends(none, none, reached, 0.03);
+    const GroupBends n = choose_group_bends(none, none, none, reached, no_two, 0.03, 0.04);
     EXPECT_TRUE(std::isnan(n.worst));
     EXPECT_EQ(n.worst_group, -1);
     // Deterministic.
-    EXPECT_EQ(choose_group_bends(bent, plain, reached, 0.0225).bend, b.bend);
+    EXPECT_EQ(choose_group_bends(bent, two_unmeasured, plain, reached, no_two, 0.0225, 0.03).bend, b.bend);
+    EXPECT_EQ(b.two, no_two) << "two lookups only where predicted";
+}
+
+// Two fitted lookups instead of three in a bending group: where the group's default says so
+// (the bands from 0.6, whose predictions are the two lookups' already), where two are within
+// the threshold, or, where the frame's worst with three misses the target, where two are
+// within kTwoLookupsTolerance of that worst; never in along R's groups, never unmeasured.
+TEST(ShadingChoice, TwoLookupsWhereTheyAreWithinOrTheTargetIsOutOfReach) {
+    const double within = 0.0225, target = 0.03;
+    std::array<bool, 8> reached;
+    reached.fill(true);
+    const std::array<bool, 8> by_default = {false, false, false, false, false, true, false, false};
+    // In reach (worst with three 2.9%): two only within the threshold.
+    //                                  0      1      2      3      4      5      6      7
+    std::array<double, 8> three = {0.020, 0.029, 0.010, 0.010, 0.010, 0.028, 0.010, nan};
+    std::array<double, 8> two = {0.022, 0.031, 0.023, nan, 0.010, 0.060, 0.010, 0.010};
+    const std::array<double, 8> plain = {0.050, 0.050, 0.050, 0.050, 0.050, 0.050, 0.001, 0.050};
+    const GroupBends a = choose_group_bends(three, two, plain, reached, by_default, within, target);
+    const std::array<bool, 8> in_reach = {true, false, false, false, true, true, false, true};
+    EXPECT_EQ(a.two, in_reach);
+    EXPECT_DOUBLE_EQ(a.error[0], 0.022);
+    EXPECT_DOUBLE_EQ(a.error[5], 0.028) << "the default's prediction is the bent one";
+    EXPECT_FALSE(a.bend[6]) << "along R";
+    EXPECT_DOUBLE_EQ(a.error[6], 0.001);
+    EXPECT_DOUBLE_EQ(a.worst, 0.029);
+    EXPECT_EQ(a.worst_group, 1);
+    // Out of reach (group 2 at 4.0% with three): two within 4.6% (15% over it).
+    three[2] = 0.040;
+    two = {0.022, 0.031, 0.045, 0.047, nan, 0.060, 0.010, 0.046};
+    const GroupBends b = choose_group_bends(three, two, plain, reached, by_default, within, target);
+    const std::array<bool, 8> out_of_reach = {true, true, true, false, false, true, false, true};
+    EXPECT_EQ(b.two, out_of_reach);
+    EXPECT_DOUBLE_EQ(b.error[1], 0.031) << "within target with three, but the frame misses it anyway";
+    EXPECT_DOUBLE_EQ(b.error[3], 0.010) << "4.7% is more than 15% over 4.0%: three";
+    EXPECT_DOUBLE_EQ(b.worst, 0.046);
+    EXPECT_EQ(b.worst_group, 7);
+    // An unreached group keeps its default, never counts, and does not set the worst.
+    reached[2] = false;
+    const GroupBends u = choose_group_bends(three, two, plain, reached, by_default, within, target);
+    EXPECT_FALSE(u.two[2]);
+    EXPECT_TRUE(u.bend[2]);
+    const std::array<bool, 8> in_reach_again = {true, false, false, false, false, true, false, false};
+    EXPECT_EQ(u.two, in_reach_again) << "without group 2 the frame is in reach again: two only within the threshold";
 }
 
 // The groups a material can fall in: its band and class; a metallic-roughness texture

@@ -62,13 +62,14 @@ protected:
     // metallic-roughness texture, so that it is not a constant of the pipeline. `disks`:
     // the session's extracted lights.
     RenderedImages rough_metal_frame(const char* env_file, ShadingMethod shading, float roughness, bool textured,
-                                     size_t* disks = nullptr) {
+                                     size_t* disks = nullptr, bool two_lookups_everywhere = false) {
         std::string env = FACET_SHARED_DATA_DIR "/env/";  // appended (GCC 12's false -Wstringop-overflow)
         env += env_file;
         RenderJob job = small_job("builtin:sphere", env);
         job.frame.skybox = false;
         job.frame.samples = 1;
         job.shading = shading;
+        if (two_lookups_everywhere) job.frame.two_lookup_groups.fill(true);
         Scene scene = builtin_scene("builtin:sphere", std::nullopt).value();
         Material& m = scene.materials[0];
         m.base_color = glm::vec4(0.9f, 0.9f, 0.9f, 1.0f);
@@ -314,6 +315,30 @@ TEST_F(ForwardRenderTest, TwoLookupsOfARoughMaterialFollowTheThree) {
     EXPECT_GT(differ, covered / 4) << "the same lookups in both: FACET_TWO_LOOKUPS not compiled in";
     EXPECT_LT(sum / covered, 0.02);
     EXPECT_LT(worst, 0.08);
+}
+
+// A textured material reads two lookups where FrameSettings::two_lookup_groups allows every
+// group it reaches (the automatic choice's out-of-reach case, render/shading_choice.h): the
+// roughness-0.8 metal through a white texture is then the constant-roughness one's frame
+// (two lookups by default), where with the default groups it read three (the test above).
+TEST_F(ForwardRenderTest, TwoLookupGroupsGiveATexturedMaterialTwoLookups) {
+    const RenderedImages constant = rough_metal_frame("venice_sunset_1k.hdr", ShadingMethod::lights_dominant, 0.8f, false);
+    const RenderedImages textured =
+        rough_metal_frame("venice_sunset_1k.hdr", ShadingMethod::lights_dominant, 0.8f, true, nullptr, true);
+    ASSERT_EQ(constant.hdr.size(), 64u * 64u * 4u);
+    ASSERT_EQ(textured.hdr.size(), constant.hdr.size());
+    double worst = 0;
+    int covered = 0;
+    for (size_t i = 0; i < constant.hdr.size(); i += 4) {
+        if (constant.hdr[i + 3] < 1.0f) continue;
+        const double a = 0.2126 * constant.hdr[i] + 0.7152 * constant.hdr[i + 1] + 0.0722 * constant.hdr[i + 2];
+        const double b = 0.2126 * textured.hdr[i] + 0.7152 * textured.hdr[i + 1] + 0.0722 * textured.hdr[i + 2];
+        worst = std::max(worst, std::abs(b - a) / std::max(a, 1e-6));
+        ++covered;
+    }
+    ASSERT_GT(covered, 1000);
+    std::printf("roughness 0.8 metal, textured with two lookups against constant: max %.2e\n", worst);
+    EXPECT_LT(worst, 1e-4);
 }
 
 // The benchmark's floor (FrameSettings::flat_floor): every covered pixel is the material's

@@ -158,7 +158,8 @@ TEST(FacetRender, WritesPngExrJsonAndViews) {
                             "\"gamma\": \"sRGB\"", "\"version\"", "\"builtin:sky\"", "sphere.normal.exr",
                             "\"brdf\": \"gltf\"", "\"requested\": \"auto\"", "\"method\": \"lights",
                             "\"reason\": \"1 light(s) extracted", "\"target_error\": 0.03", "\"predicted_error\": ",
-                            "\"predicted_worst_group\": \"roughness [", "\"predicted_groups\": [", "\"unbent_groups\": ["})
+                            "\"predicted_worst_group\": \"roughness [", "\"predicted_groups\": [", "\"unbent_groups\": [",
+                            "\"two_lookup_groups\": ["})
         EXPECT_NE(json.find(key), std::string::npos) << key << "\n" << json;
     // The automatic choice keeps the predicted error within the target, and says it.
     const size_t at = json.find("\"predicted_error\": ");

@@ -56,6 +56,13 @@ struct FrameSettings {
     // a material reaching none of them (material_shading_groups) reads along R. The automatic
     // choice clears the groups where the plain lookup is predicted within the target.
     std::array<bool, 8> dominant_groups{true, true, true, true, true, true, true, true};
+    // And the groups whose bent lookup may be two fitted lookups of equal weight instead of
+    // three (one table read and one cube read fewer): a material gets them where every
+    // bending group it reaches allows them. By default the bands from kTwoLookupsRoughness
+    // (render/specular_lobes.h); the automatic choice adds smoother ones where three are out
+    // of the target's reach and two predicted within kTwoLookupsTolerance of them
+    // (render/shading_choice.h).
+    std::array<bool, 8> two_lookup_groups{false, false, false, false, true, true, true, true};
     std::vector<Light> lights;       // every punctual light of the frame
     // Bright regions taken out of the environment before the bake (light extraction),
     // shaded as disk lights with the full BRDF; the skybox shows them again.

@@ -57,6 +57,10 @@ struct ShadingChoice {
     // along R instead (the cheaper method predicted within the target there); the
     // predicted errors above are then per group those of the lookup each group uses.
     std::vector<std::string> unbent_groups;
+    // Of the bending groups below roughness 0.6, those reading two fitted lookups instead of
+    // three (render/shading_choice.h, choose_group_bends); their predicted errors above are
+    // the two lookups'.
+    std::vector<std::string> two_lookup_groups;
 };
 
 struct Material;
