@@ -785,9 +785,10 @@ FacetSpecularLookups facet_specular_lookups(FacetSurface s, vec3 v, float NdotV,
 }
 
 // Two lookups of equal weight fitted like the three (facet_specular_lookups; one table read
-// and one cube read fewer), for surfaces of roughness kTwoLookupsRoughness (0.6) and rougher
-// (include/facet/render/specular_lobes.h): below it they leave the image outside its targets.
-// The third lookup weighs 0, which the compiler folds away.
+// and one cube read fewer): from roughness kTwoLookupsRoughness (0.6) up they keep the image
+// within its targets, below it only where the automatic choice predicts so
+// (include/facet/render/specular_lobes.h). The third lookup weighs 0, which the compiler
+// folds away.
 FacetSpecularLookups facet_two_specular_lookups(FacetSurface s, vec3 v, float NdotV, float specular_levels,
                                                 sampler2D lobe_table) {
     vec4 e = facet_two_lobe_entry(lobe_table, s.brdf, facet_lobe_column(NdotV), facet_lobe_row(s.roughness));

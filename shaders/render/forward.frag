@@ -17,8 +17,8 @@
 // HAS_TRANSMISSION_MAP, HAS_THICKNESS_MAP, <SLOT>_UV (a texture's coordinates: its uv set and
 // KHR_texture_transform) and NORMAL_TANGENT_FRAME, USE_IBL, BRDF_THESIS (the thesis' model
 // instead of glTF's), MULTISCATTER (energy compensation), DOMINANT_DIRECTION (bent specular
-// lookup) and FACET_TWO_LOOKUPS (two fitted lookups instead of three: a material of constant
-// roughness 0.6 and rougher), VIEW (what is written: render/views.glsl).
+// lookup) and FACET_TWO_LOOKUPS (two fitted lookups instead of three: where every bending
+// group a material reaches allows them, FrameSettings::two_lookup_groups), VIEW (what is written: render/views.glsl).
 #include "facet/shading.glsl"
 #include "render/forward_interface.glsl"
 #include "render/views.glsl"
@@ -335,7 +335,7 @@ void main() {
     // The lookups of the prefiltered cube, made once: the environment reads them, and the
     // disks' specular counts for the share of them read from levels without the lights.
 #if defined(DOMINANT_DIRECTION) && defined(FACET_TWO_LOOKUPS)
-    // A material of constant roughness 0.6 or rougher: two lookups (render/forward_pass.cpp).
+    // Two lookups where the material's groups allow them (render/forward_pass.cpp).
     FacetSpecularLookups lookups = facet_two_specular_lookups(s, v, NdotV, specular_levels, specular_lobes);
 #else
     FacetSpecularLookups lookups = facet_specular_lookups(s, v, NdotV, specular_levels, specular_lobes, dominant_direction);

@@ -13,11 +13,13 @@ namespace facet {
 inline constexpr uint32_t kSpecularLobeTableWidth = 27;   // 3 texels x 9 n.v columns (0.1 .. 0.9)
 inline constexpr uint32_t kSpecularLobeTableHeight = 18;  // 2 BRDF models x 9 roughness rows (0.2 .. 1)
 
-// Surfaces of this roughness and rougher may use two lookups of equal weight instead of
-// three (fitted alike: scripts/fit_specular_lobes.py --two): one table read and one cube read
-// fewer. The forward pass does so where a material's roughness is a constant of its pipeline.
-// Below it two lookups leave the image outside its targets (docs/accuracy.md: venice_sunset's
-// [0.4,0.6) metal 4.0%); from it up they keep every group within them.
+// Two lookups of equal weight instead of three (fitted alike: scripts/fit_specular_lobes.py
+// --two) cost one table read and one cube read fewer. From this roughness up they keep every
+// group within its targets, so the bands from it read two by default
+// (FrameSettings::two_lookup_groups); below it they can leave the image outside them
+// (docs/accuracy.md: venice_sunset's [0.4,0.6) metal 4.0%), so there the automatic choice
+// takes them only where predicted within the target's margin, or where the target is out
+// of reach and they are about as good (render/shading_choice.h, kTwoLookupsTolerance).
 inline constexpr float kTwoLookupsRoughness = 0.6f;
 
 // RGBA texels, row 0 first, three per entry so that the shader reads them with two fetches
