@@ -120,12 +120,12 @@ GroupBends choose_group_bends(const std::array<double, 8>& bent, const std::arra
         if (!std::isnan(out.error[g])) worst_bent = std::max(worst_bent, out.error[g]);
     }
     // Two lookups where they are within, or within the tolerance of that worst where it
-    // misses the target.
-    const double bound = worst_bent > target ? kTwoLookupsTolerance * worst_bent : within;
+    // misses the target (never less than `within`).
+    const double bound = worst_bent > target ? std::max(kTwoLookupsTolerance * worst_bent, within) : within;
     out.worst = std::numeric_limits<double>::quiet_NaN();
     for (size_t g = 0; g < 8; ++g) {
         if (!reached[g]) continue;
-        if (out.bend[g] && !two_by_default[g] && two[g] <= std::max(bound, within)) {
+        if (out.bend[g] && !two_by_default[g] && two[g] <= bound) {
             out.two[g] = true;
             out.error[g] = two[g];
         }
