@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 
@@ -28,8 +29,10 @@ double tolerance(double measured) { return std::max(0.015, 0.25 * measured); }
 
 // Renders the frame with `shading`, measures it as facet-bench accuracy does and compares
 // every group with the session's prediction; returns the session's choice.
-ShadingChoice predicted_against_measured(ShadingMethod shading, BrdfModel model) {
+ShadingChoice predicted_against_measured(ShadingMethod shading, BrdfModel model, double target_error = 0.03,
+                                         std::array<bool, 8>* two_lookup_groups = nullptr) {
     RenderJob job;
+    job.target_error = target_error;
     job.model = "builtin:spheres";
     job.env = "builtin:sky";
     job.env_width = 512;
@@ -46,6 +49,7 @@ ShadingChoice predicted_against_measured(ShadingMethod shading, BrdfModel model)
         return {};
     }
     const ShadingChoice choice = (*session)->shading();
+    if (two_lookup_groups) *two_lookup_groups = (*session)->frame().two_lookup_groups;
     auto frame = (*session)->render_frame();
     if (!frame) {
         ADD_FAILURE() << frame.error().message;
@@ -103,6 +107,31 @@ TEST(ShadingPrediction, ThePlainSplitSumsLargeErrorIsPredicted) {
     EXPECT_EQ(c.reason, "requested");
     ASSERT_TRUE(c.predicted_error.has_value());
     EXPECT_GT(*c.predicted_error, 0.05);
+}
+
+// A target no method reaches (0.5% under the sun sky): lights+dominant, the most accurate,
+// and every bending group whose two lookups are predicted within 15% of the worst group's
+// error with three reads two (render/shading_choice.h). The session's frame carries them,
+// the choice lists them, and the frame measures as predicted with them.
+TEST(ShadingPrediction, OutOfReachTheChoiceTakesTwoLookupsAndTheFrameFollows) {
+    std::array<bool, 8> two{};
+    const ShadingChoice c = predicted_against_measured(ShadingMethod::automatic, BrdfModel::gltf, 0.005, &two);
+    EXPECT_EQ(c.method, ShadingMethod::lights_dominant) << c.reason;
+    ASSERT_TRUE(c.predicted_error.has_value());
+    EXPECT_GT(*c.predicted_error, c.target_error);
+    for (const std::string& g : c.two_lookup_groups) std::printf("  two lookups: %s\n", g.c_str());
+    EXPECT_FALSE(c.two_lookup_groups.empty()) << c.reason;
+    EXPECT_NE(c.reason.find("two fitted lookups instead of three: "), std::string::npos) << c.reason;
+    const char* labels[8] = {"roughness [0.2,0.4) dielectric", "roughness [0.2,0.4) metal",
+                             "roughness [0.4,0.6) dielectric", "roughness [0.4,0.6) metal",
+                             "roughness [0.6,0.8) dielectric", "roughness [0.6,0.8) metal",
+                             "roughness [0.8,1.0] dielectric", "roughness [0.8,1.0] metal"};
+    for (size_t g = 0; g < 4; ++g) {  // the bands below 0.6, where two are not the default
+        const bool listed =
+            std::find(c.two_lookup_groups.begin(), c.two_lookup_groups.end(), labels[g]) != c.two_lookup_groups.end();
+        EXPECT_EQ(two[g], listed) << labels[g];
+    }
+    for (size_t g = 4; g < 8; ++g) EXPECT_TRUE(two[g]) << labels[g] << ": the default";
 }
 
 TEST(ShadingPrediction, NoEnvironmentNoPrediction) {
