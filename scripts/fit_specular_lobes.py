@@ -15,8 +15,8 @@ about 10 minutes on two cores). Fresnel is left out of the fit: the LUT scales t
 
        python3 scripts/fit_specular_lobes.py --two [OUT.cpp]   fits two kernels of equal weight instead
 (engine/render/specular_lobes_two_table.cpp; under a minute): one table read and one cube read fewer,
-which the forward pass uses for materials of constant roughness 0.6 and rougher, where the image stays
-within its targets with them (docs/accuracy.md).
+which the forward pass uses from roughness 0.6 up and wherever the automatic shading choice predicts
+them about as good (FrameSettings::two_lookup_groups; docs/accuracy.md).
 """
 import sys
 import numpy as np

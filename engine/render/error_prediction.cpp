@@ -167,11 +167,10 @@ Result<ShadingPrediction> predict_shading_errors(RenderSession::State& s, std::s
     const auto [lo, hi] = probe.world_bounds();
     f.camera = frame_bounds(lo, hi, glm::radians(45.0f), float(f.width) / float(f.height));
 
-    const FrameSettings defaults;
     auto render = [&](ShadingMethod method, bool two_lookups) -> Result<std::vector<float>> {
         f.dominant_direction = bends_lookup(method);
         f.dominant_groups.fill(true);  // the method's own error in every group
-        f.two_lookup_groups = defaults.two_lookup_groups;
+        f.two_lookup_groups = kDefaultTwoLookupGroups;
         if (two_lookups) f.two_lookup_groups.fill(true);
         f.environment_lights = shades_lights(method) ? s.baked->lights() : std::vector<DiskLight>{};
         f.environment_light_level = s.baked->metadata().light_split_level;

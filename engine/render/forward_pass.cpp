@@ -227,9 +227,7 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
         disks = &found->second;
     }
     // The fitted lookups where the material reaches a group that needs them; two of them
-    // instead of three where every such group allows it (FrameSettings::two_lookup_groups,
-    // whose default allows the bands from kTwoLookupsRoughness: 0.6, band 2's start).
-    static_assert(kTwoLookupsRoughness == 0.6f);
+    // instead of three where every such group allows it (FrameSettings::two_lookup_groups).
     bool bend = false, two = true;
     const std::array<bool, 8> reached = material_shading_groups(m);
     for (size_t g = 0; g < reached.size(); ++g) {

@@ -210,11 +210,10 @@ Status choose_session_shading(RenderSession::State& s, const SayFn& say) {
             // Within three quarters of the target, not the target itself: the probe's
             // prediction can be a few tenths of a point off the frame's measure (venice_sunset's
             // [0.2,0.4) metal with lights alone: 2.9% predicted, 3.04% measured at 640x360).
-            const FrameSettings defaults;
             for (const MethodPrediction& q : predicted->methods)
                 if (q.method == plain)
                     bends = choose_group_bends(p.group_error, p.two_lookup_error, q.group_error, groups,
-                                               defaults.two_lookup_groups, 0.75 * r.choice.target_error,
+                                               kDefaultTwoLookupGroups, 0.75 * r.choice.target_error,
                                                r.choice.target_error);
             auto list = [](const std::vector<std::string>& labels) {
                 std::string text;
@@ -224,7 +223,7 @@ Status choose_session_shading(RenderSession::State& s, const SayFn& say) {
             for (size_t g = 0; g < 8; ++g) {
                 if (!groups[g]) continue;
                 if (!bends.bend[g]) r.choice.unbent_groups.push_back(group_label(g));
-                else if (bends.two[g] && !defaults.two_lookup_groups[g]) r.choice.two_lookup_groups.push_back(group_label(g));
+                else if (bends.two[g] && !kDefaultTwoLookupGroups[g]) r.choice.two_lookup_groups.push_back(group_label(g));
             }
             if (!r.choice.unbent_groups.empty())
                 r.choice.reason += "; along R where " + std::string(shading_method_name(plain)) +

@@ -64,7 +64,7 @@ inline constexpr double kTwoLookupsTolerance = 1.15;
 // a group reached by the probe (`reached`) reads along R where `plain` is within `within`
 // (the session passes three quarters of its target, a margin for the probe's prediction),
 // which costs a third of a split-sum frame less; else it bends, with two lookups where
-// `two_by_default` (FrameSettings::two_lookup_groups' defaults: the probe's lookups there
+// `two_by_default` (kDefaultTwoLookupGroups, render/specular_lobes.h: the probe's lookups there
 // are two already), where `two` is within `within`, or, where the reached groups' worst
 // with three (and R where chosen) is over `target`, where `two` is within
 // kTwoLookupsTolerance of that worst; else with three. `error` is each group's predicted

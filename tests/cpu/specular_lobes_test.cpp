@@ -6,6 +6,7 @@
 // one kernel along R at the surface's roughness, in L1 over the sphere.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -124,6 +125,13 @@ TEST(SpecularLobes, FittedLookupsFollowTheTrueLobeBetterThanOneAlongR) {
                 // measured 2-10x closer; half is the bound.
                 EXPECT_LT(d.fitted, 0.5 * d.mirror) << brdf_model_name(model) << " row " << row << " column " << column;
             }
+}
+
+// The groups that read two lookups by default: the measure's bands from kTwoLookupsRoughness,
+// both classes (index 2 x band + metal).
+TEST(SpecularLobes, TwoLookupsByDefaultFromTheRoughBands) {
+    const std::array<bool, 8> expected = {false, false, false, false, true, true, true, true};
+    EXPECT_EQ(kDefaultTwoLookupGroups, expected);
 }
 
 // The two lookups of equal weight (the table's third block), used from kTwoLookupsRoughness

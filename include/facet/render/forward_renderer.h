@@ -16,6 +16,7 @@
 #include <facet/core/brdf_model.h>
 #include <facet/core/result.h>
 #include <facet/gpu/resources.h>
+#include <facet/render/specular_lobes.h>
 #include <facet/graph/render_graph.h>
 #include <facet/render/camera.h>
 #include <facet/shader/compiler.h>
@@ -59,10 +60,10 @@ struct FrameSettings {
     // And the groups whose bent lookup may be two fitted lookups of equal weight instead of
     // three (one table read and one cube read fewer): a material gets them where every
     // bending group it reaches allows them. By default the bands from kTwoLookupsRoughness
-    // (render/specular_lobes.h); the automatic choice adds smoother ones where three are out
-    // of the target's reach and two predicted within kTwoLookupsTolerance of them
-    // (render/shading_choice.h).
-    std::array<bool, 8> two_lookup_groups{false, false, false, false, true, true, true, true};
+    // (render/specular_lobes.h); the automatic choice adds smoother ones where two are
+    // predicted within its margin, or where the target is out of reach and two are predicted
+    // within kTwoLookupsTolerance of the frame's worst (render/shading_choice.h).
+    std::array<bool, 8> two_lookup_groups = kDefaultTwoLookupGroups;
     std::vector<Light> lights;       // every punctual light of the frame
     // Bright regions taken out of the environment before the bake (light extraction),
     // shaded as disk lights with the full BRDF; the skybox shows them again.

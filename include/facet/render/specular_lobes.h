@@ -5,6 +5,8 @@
 // for the dominant and automatic shading methods; a host engine whose own shaders call
 // facet_environment_light with fitted lookups (shaders/facet/shading.glsl) uploads these
 // texels as a VK_FORMAT_R32G32B32A32_SFLOAT image and samples it linearly, clamped to edge.
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -21,6 +23,15 @@ inline constexpr uint32_t kSpecularLobeTableHeight = 18;  // 2 BRDF models x 9 r
 // takes them only where predicted within the target's margin, or where the target is out
 // of reach and they are about as good (render/shading_choice.h, kTwoLookupsTolerance).
 inline constexpr float kTwoLookupsRoughness = 0.6f;
+
+// Those bands as groups of issue 13's measure (index 2 x band + metal; bands of roughness 0.2
+// wide from 0.2, render/shading_method.h): FrameSettings::two_lookup_groups' default.
+constexpr std::array<bool, 8> default_two_lookup_groups() {
+    std::array<bool, 8> groups{};
+    for (std::size_t g = 0; g < groups.size(); ++g) groups[g] = 0.2f + 0.2f * float(g / 2) >= kTwoLookupsRoughness - 1e-4f;
+    return groups;
+}
+inline constexpr std::array<bool, 8> kDefaultTwoLookupGroups = default_two_lookup_groups();
 
 // RGBA texels, row 0 first, three per entry so that the shader reads them with two fetches
 // (three lookups) or one (two): texel (column, model * 9 + row) holds (t0, t1, t2, w0), texel
