@@ -79,6 +79,10 @@ DiskLight merge(std::span<const DiskLight> disks, const std::vector<size_t>& mem
 
 }  // namespace
 
+bool disk_is_point_for_lobe(const DiskLight& disk, float roughness) {
+    return double(roughness) * roughness >= double(kPointCapLobeRatio) * disk.angular_radius;
+}
+
 std::vector<DiskLight> disks_for_lobe(std::span<const DiskLight> disks, float roughness) {
     const double alpha = double(roughness) * roughness;
     const double limit = std::min(double(kMergedCapLobeFraction) * alpha, double(kMergedCapMaxRadius));

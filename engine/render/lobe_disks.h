@@ -22,6 +22,17 @@ inline constexpr float kMergedCapLobeFraction = 0.5f;
 // merged caps of 13-20 degrees read the studio's rough metals 11-16% too bright.
 inline constexpr float kMergedCapMaxRadius = 0.2f;
 
+// Where GGX's alpha is at least this many times a cap's angular radius, the lobe shades the
+// cap as a point at its centre carrying the cap's irradiance, corrected for D's curvature
+// across it (facet_disk_point_lobe, shaders/facet/shading.glsl): as close to the sum over the
+// cap as the closed form there, at about half its arithmetic (docs/accuracy.md). Uncorrected,
+// the point is about 1 / (4 k^2) too bright where R hits the centre of a cap k times
+// narrower than the lobe, 10% at grazing view for k = 3.
+inline constexpr float kPointCapLobeRatio = 3.0f;
+
+// Whether a lobe of `roughness` shades `disk` as a point (kPointCapLobeRatio).
+bool disk_is_point_for_lobe(const DiskLight& disk, float roughness);
+
 // `disks` with the caps that a lobe of `roughness` cannot tell apart merged, greedily from the
 // most powerful: a cap joins the first group whose merged cap, and every member's far edge
 // from its centre, stay within kMergedCapLobeFraction x alpha and kMergedCapMaxRadius, else

@@ -69,6 +69,21 @@ TEST(LobeDisks, RoughLobesMergeCapsTheyCannotTellApart) {
     EXPECT_EQ(disks_for_lobe(speck, 1.0f).size(), 3u);
 }
 
+// A lobe shades a cap as a point from an alpha (roughness^2) of kPointCapLobeRatio (3) times
+// the cap's angular radius: a 2-degree lamp from roughness 0.324, an 11.5-degree softbox
+// (0.2 rad) from 0.775; never for a mirror.
+TEST(LobeDisks, CapsAreShadedAsPointsWhereTheLobeIsThreeTimesWider) {
+    EXPECT_EQ(kPointCapLobeRatio, 3.0f);
+    const DiskLight lamp = cap({0.0, 0.0, 1.0}, 2.0, {1.0f, 1.0f, 1.0f});
+    const DiskLight softbox = cap({0.0, 0.0, 1.0}, 0.2 * 180.0 / pi, {1.0f, 1.0f, 1.0f});
+    EXPECT_FALSE(disk_is_point_for_lobe(lamp, 0.0f));
+    EXPECT_FALSE(disk_is_point_for_lobe(lamp, 0.32f));
+    EXPECT_TRUE(disk_is_point_for_lobe(lamp, 0.33f));
+    EXPECT_FALSE(disk_is_point_for_lobe(softbox, 0.77f));
+    EXPECT_TRUE(disk_is_point_for_lobe(softbox, 0.78f));
+    EXPECT_TRUE(disk_is_point_for_lobe(softbox, 1.0f));
+}
+
 TEST(LightExtraction, FindsTheSunWithItsPowerAndDirection) {
     // Sun: 1e5 radiance, 2 degrees across (the synthetic sky of the IBL tests).
     const double diameter = 2.0, elevation = 30.0, azimuth = 40.0, radiance = 1e5;

@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
+#include <vector>
 
 #include "support/compute_probe.h"
 #include "support/gpu_test.h"
@@ -209,26 +211,24 @@ TEST_F(ShadingIncludeTest, DiskLightLimits) {
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(v[9 + c], 1000 * (albedo[c] + (1 - albedo[c]) * w), 0.005 * 1000 * albedo[c]);
 }
 
-// Wide caps (3 and 11 degrees) on smooth to rough surfaces, R inside, at the edge, just
-// outside and far from the cap, the horizon cutting some: the closed form against a sum
-// of the model's BRDF over 20000 directions spread evenly over the cap (both models).
-TEST_F(ShadingIncludeTest, DiskLightMatchesTheSumOverTheCap) {
-    struct Case {
-        double theta, roughness, metallic, nv, offset, azimuth;  // R's angle from the centre, radians
-        bool gltf;
-    };
-    std::vector<Case> cases;
-    for (bool gltf : {true, false})
-        for (double theta : {0.05, 0.2})
-            for (double roughness : {0.3, 0.6})
-                for (double nv : {0.4, 0.9})
-                    for (double offset : {0.0, 1.0, 1.5, 6.0}) cases.push_back({theta, roughness, gltf ? 1.0 : 0.0, nv,
-                                                                              offset * theta, 0.7, gltf});
-    cases.push_back({0.2, 0.5, 1.0, 0.6, 1.3, 1.57, true});  // the cap's centre 0.1 rad below the horizon
+// A cap of angular radius theta with R `offset` radians from its centre (rotated about R by
+// `azimuth`), seen at n.v, on a surface of the model's BRDF.
+struct DiskCase {
+    double theta, roughness, metallic, nv, offset, azimuth;
+    bool gltf;
+};
+
+struct DiskResult {
+    double specular, sum_specular, diffuse, sum_diffuse;  // the green channel
+};
+
+// facet_disk_light (`point`: as a point, facet_disk_point_lobe) against a sum of the
+// model's BRDF over 20000 directions spread evenly over the cap, per case.
+std::vector<DiskResult> disk_against_sums(Context& context, const std::vector<DiskCase>& cases, bool point) {
     std::string body;
     std::vector<V3> normals, views, centres;
     for (size_t i = 0; i < cases.size(); ++i) {
-        const Case& c = cases[i];
+        const DiskCase& c = cases[i];
         const V3 n{0, 0, 1}, view{std::sqrt(1 - c.nv * c.nv), 0, c.nv};
         const V3 R{-view.x, -view.y, view.z};
         // Rotate R by `offset` about an axis perpendicular to it, at `azimuth` around R.
@@ -243,22 +243,22 @@ TEST_F(ShadingIncludeTest, DiskLightMatchesTheSumOverTheCap) {
         std::snprintf(line, sizeof line,
                       "{ FacetSurface s = facet_surface(%s, vec3(0.0, 0.0, 1.0), vec3(0.9, 0.6, 0.3), %.3f, %.3f, 0.04, 1.0, 1.0);"
                       " vec3 v = vec3(%.9f, 0.0, %.9f); vec3 d, sp;"
-                      " facet_disk_light(s, v, %.9f, facet_make_disk_light(vec3(%.9f, %.9f, %.9f), %.3f, vec3(100.0)), d, sp);"
+                      " facet_disk_light(s, v, %.9f, facet_make_disk_light(vec3(%.9f, %.9f, %.9f), %.3f, vec3(100.0)), %s, d, sp);"
                       " put(%zuu, d); put(%zuu, sp); }\n",
                       c.gltf ? "FACET_BRDF_GLTF" : "FACET_BRDF_THESIS", c.metallic, c.roughness, view.x, view.z, c.nv,
-                      centre.x, centre.y, centre.z, c.theta, 6 * i, 6 * i + 3);
+                      centre.x, centre.y, centre.z, c.theta, point ? "true" : "false", 6 * i, 6 * i + 3);
         body += line;
     }
-    auto v = test::run_compute_probe(ctx(), "disk_sum_probe.comp", probe(body), 6 * cases.size());
-    ASSERT_EQ(v.size(), 6 * cases.size());
-    double near_error = 0, near_truth = 0;
+    auto v = test::run_compute_probe(context, "disk_sum_probe.comp", probe(body), 6 * cases.size());
+    std::vector<DiskResult> results;
+    if (v.size() != 6 * cases.size()) return results;
     for (size_t i = 0; i < cases.size(); ++i) {
-        const Case& c = cases[i];
+        const DiskCase& c = cases[i];
         const V3 cc = centres[i];
         const V3 t1 = normalize(cross(cc, std::abs(cc.y) < 0.9 ? V3{0, 1, 0} : V3{1, 0, 0})), t2 = cross(cc, t1);
         const int samples = 20000;
         const double omega = 2 * pi * (1 - std::cos(c.theta));
-        double diffuse = 0, specular = 0;  // luminance-free: the green channel
+        double diffuse = 0, specular = 0;
         for (int k = 0; k < samples; ++k) {
             const double z = 1 - (k + 0.5) / samples * (1 - std::cos(c.theta)), r = std::sqrt(1 - z * z), phi = k * 2.39996323;
             const V3 l{t1.x * r * std::cos(phi) + t2.x * r * std::sin(phi) + cc.x * z,
@@ -270,15 +270,37 @@ TEST_F(ShadingIncludeTest, DiskLightMatchesTheSumOverTheCap) {
             diffuse += b.diffuse.y, specular += b.specular.y;
         }
         diffuse *= 100 * omega / samples, specular *= 100 * omega / samples;
-        const double got_diffuse = v[6 * i + 1], got_specular = v[6 * i + 4];
-        const double error = std::abs(got_specular - specular) / std::max(specular, 1e-3);
-        std::printf("%-6s theta %.2f roughness %.1f n.v %.1f R %.2f rad from the centre: specular %.4g sum %.4g (%+.1f%%), "
+        const DiskResult r{v[6 * i + 4], specular, v[6 * i + 1], diffuse};
+        std::printf("%-6s theta %.2f roughness %.2f n.v %.1f R %.2f rad from the centre: specular %.4g sum %.4g (%+.1f%%), "
                     "diffuse %.4g sum %.4g\n",
-                    c.gltf ? "glTF" : "thesis", c.theta, c.roughness, c.nv, c.offset, got_specular, specular,
-                    100 * (got_specular - specular) / std::max(specular, 1e-30), got_diffuse, diffuse);
-        EXPECT_NEAR(got_diffuse, diffuse, 0.03 * diffuse + 1e-4) << "case " << i;
+                    c.gltf ? "glTF" : "thesis", c.theta, c.roughness, c.nv, c.offset, r.specular, r.sum_specular,
+                    100 * (r.specular - r.sum_specular) / std::max(r.sum_specular, 1e-30), r.diffuse, r.sum_diffuse);
+        results.push_back(r);
+    }
+    return results;
+}
+
+// Wide caps (3 and 11 degrees) on smooth to rough surfaces, R inside, at the edge, just
+// outside and far from the cap, the horizon cutting some: the closed form against a sum
+// of the model's BRDF over the cap (both models).
+TEST_F(ShadingIncludeTest, DiskLightMatchesTheSumOverTheCap) {
+    std::vector<DiskCase> cases;
+    for (bool gltf : {true, false})
+        for (double theta : {0.05, 0.2})
+            for (double roughness : {0.3, 0.6})
+                for (double nv : {0.4, 0.9})
+                    for (double offset : {0.0, 1.0, 1.5, 6.0}) cases.push_back({theta, roughness, gltf ? 1.0 : 0.0, nv,
+                                                                              offset * theta, 0.7, gltf});
+    cases.push_back({0.2, 0.5, 1.0, 0.6, 1.3, 1.57, true});  // the cap's centre 0.1 rad below the horizon
+    const std::vector<DiskResult> r = disk_against_sums(ctx(), cases, false);
+    ASSERT_EQ(r.size(), cases.size());
+    double near_error = 0, near_truth = 0;
+    for (size_t i = 0; i < cases.size(); ++i) {
+        const DiskCase& c = cases[i];
+        const double error = std::abs(r[i].specular - r[i].sum_specular) / std::max(r[i].sum_specular, 1e-3);
+        EXPECT_NEAR(r[i].diffuse, r[i].sum_diffuse, 0.03 * r[i].sum_diffuse + 1e-4) << "case " << i;
         const bool tail = c.offset > 2 * c.theta;
-        if (!tail) near_error += std::abs(got_specular - specular), near_truth += specular;
+        if (!tail) near_error += std::abs(r[i].specular - r[i].sum_specular), near_truth += r[i].sum_specular;
         // Seen from above (n.v 0.9) within 4%, the tails (R six radii away, a value that
         // small) within 25%. At grazing view the cap's image in slope space is an ellipse
         // 1 / (v.h) times longer than wide, which the disk of the same area stands in for:
@@ -288,6 +310,64 @@ TEST_F(ShadingIncludeTest, DiskLightMatchesTheSumOverTheCap) {
     }
     // Where R is in or near the cap (what a highlight shows), 6% overall.
     EXPECT_LT(near_error / near_truth, 0.06);
+}
+
+// A cap as a point where the lobe is wider than kPointCapLobeRatio (3) x its radius
+// (render/lobe_disks.h): 3- and 11-degree caps on lobes 3 to 12 times wider, R inside, at
+// the edge, just outside and far from the cap, grazing and from above, the horizon cutting
+// some, and at the rim, against the sum over the cap (both models), next to the closed form's error.
+TEST_F(ShadingIncludeTest, DiskLightAsAPointMatchesTheSumWhereTheLobeIsWide) {
+    std::vector<DiskCase> cases;
+    for (bool gltf : {true, false})
+        for (double theta : {0.05, 0.2})
+            for (double lobe : {3.0, 5.0, 12.0}) {  // alpha / theta
+                const double roughness = std::sqrt(lobe * theta);
+                if (roughness > 1.0) continue;
+                for (double nv : {0.4, 0.9})
+                    for (double offset : {0.0, 1.0, 1.5, 6.0})
+                        cases.push_back({theta, roughness, gltf ? 1.0 : 0.0, nv, offset * theta, 0.7, gltf});
+            }
+    cases.push_back({0.05, 0.6, 1.0, 0.6, 1.3, 1.57, true});  // the cap's centre 0.1 rad below the horizon
+    cases.push_back({0.2, 0.9, 0.0, 0.3, 1.25, 1.57, false});
+    const size_t rim = cases.size();  // then a view at the rim (n.v 0.15), R along the horizon
+    for (double theta : {0.05, 0.2})
+        for (double offset : {0.0, 1.0, 2.0, 4.0})
+            for (double azimuth : {0.0, 1.57, 3.14})
+                cases.push_back({theta, theta > 0.1 ? 0.8 : 0.5, 1.0, 0.15, offset * theta, azimuth, true});
+    const std::vector<DiskResult> point = disk_against_sums(ctx(), cases, true);
+    const std::vector<DiskResult> closed = disk_against_sums(ctx(), cases, false);
+    ASSERT_EQ(point.size(), cases.size());
+    ASSERT_EQ(closed.size(), cases.size());
+    double near_point = 0, near_closed = 0, near_truth = 0, rim_point = 0, rim_closed = 0, rim_truth = 0;
+    for (size_t i = 0; i < cases.size(); ++i) {
+        const DiskCase& c = cases[i];
+        const DiskResult& r = point[i];
+        const double error = std::abs(r.specular - r.sum_specular) / std::max(r.sum_specular, 1e-3);
+        EXPECT_NEAR(r.diffuse, r.sum_diffuse, 0.03 * r.sum_diffuse + 1e-4) << "case " << i;
+        if (i >= rim) {
+            rim_point += std::abs(r.specular - r.sum_specular), rim_truth += r.sum_specular;
+            rim_closed += std::abs(closed[i].specular - closed[i].sum_specular);
+            continue;
+        }
+        const bool tail = c.offset > 2 * c.theta;
+        if (!tail) {
+            near_point += std::abs(r.specular - r.sum_specular), near_truth += r.sum_specular;
+            near_closed += std::abs(closed[i].specular - closed[i].sum_specular);
+        }
+        // As the closed form: seen from above within 4%, the tails within 25%; at grazing view,
+        // where the horizon cuts an 11-degree cap next to R, within 20% (the closed form 17%).
+        EXPECT_LT(error, tail ? 0.25 : c.nv > 0.8 ? 0.04 : 0.2) << "case " << i;
+    }
+    // Where R is in or near the cap, 3% overall, and no further off than the closed form.
+    std::printf("R in or near the cap: as a point %.2f%% off overall, the closed form %.2f%%\n", 100 * near_point / near_truth,
+                100 * near_closed / near_truth);
+    EXPECT_LT(near_point / near_truth, 0.03);
+    EXPECT_LE(near_point, near_closed);
+    // At the rim both are coarse (the cap's image in slope space is far from a disk there;
+    // issue 13's measure leaves out n.v under 0.3): the point no further off than the closed form.
+    std::printf("at the rim (n.v 0.15): as a point %.2f%% off overall, the closed form %.2f%%\n", 100 * rim_point / rim_truth,
+                100 * rim_closed / rim_truth);
+    EXPECT_LE(rim_point, rim_closed);
 }
 
 // Turquin 2019: a light's specular scaled by 1 + F0 (1 / E - 1), E = A + B.
