@@ -10,6 +10,7 @@
 #include <facet/cache/directory_cache.h>
 #include <facet/core/hash.h>
 #include <facet/render/specular_lobes.h>
+#include "render/lobe_disks.h"
 #include "render/shading_choice.h"
 #include "shader/embedded_shaders.h"
 
@@ -36,6 +37,10 @@ std::string cache_key(const RenderSession::State& s, std::span<const ShadingMeth
     }
     for (std::size_t i = 0; i < embedded::shader_count; ++i)
         h.add(embedded::shaders[i].name).add("|").add(embedded::shaders[i].text, embedded::shaders[i].size);
+    // The rules that pick a material's disks are the library's too (render/lobe_disks.h).
+    std::snprintf(text, sizeof text, "%.9g,%.9g,%.9g;", double(kMergedCapLobeFraction), double(kMergedCapMaxRadius),
+                  double(kPointCapLobeRatio));
+    h.add(text);
     // The fitted lookups' table is data of the library, not of the shaders.
     const std::vector<float> lobes = specular_lobe_table_texels();
     h.add(lobes.data(), lobes.size() * sizeof(float));
