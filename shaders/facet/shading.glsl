@@ -537,6 +537,25 @@ float facet_disk_irradiance(vec3 n, FacetDiskLight disk) {
                : max(NdotC * PI * sin_theta * sin_theta * segment + 2.0 / 3.0 * chord * sqrt(chord), 0.0);
 }
 
+// The model's visibility G / (4 n.l n.v) for a cap's light (the environment's k for the
+// thesis' model), as a quotient for the caller to fold into its one division.
+void facet_disk_visibility(FacetSurface s, float NdotV, float NdotL, float a2, out float numerator,
+                           out float denominator) {
+    if (s.brdf == FACET_BRDF_GLTF) {
+        // V_SmithGGXCorrelated
+        float gv = NdotL * sqrt(NdotV * NdotV * (1.0 - a2) + a2);
+        float gl = NdotV * sqrt(NdotL * NdotL * (1.0 - a2) + a2);
+        numerator = gv + gl > 0.0 ? 0.5 : 0.0;
+        denominator = max(gv + gl, 1e-30);
+    } else {
+        // G_Smith(k_ibl) / (4 n.l n.v): Schlick-GGX's n.v and n.l cancel,
+        // 1 / (4 (n.v (1 - k) + k) (n.l (1 - k) + k)).
+        float k = k_ibl(s.roughness);
+        numerator = NdotV > 0.0 ? 1.0 : 0.0;
+        denominator = max(4.0 * (NdotV * (1.0 - k) + k) * (NdotL * (1.0 - k) + k), 1e-30);
+    }
+}
+
 // The cap shaded with the full BRDF (the environment's k for the thesis' model) in closed
 // form, the same arithmetic for every lobe and cap: a loop over directions in the cap costs
 // every pixel its longest trip on SIMD hardware (lavapipe runs both sides of every branch
@@ -622,19 +641,7 @@ float facet_disk_lobe(FacetSurface s, vec3 v, float NdotV, FacetDiskLight disk, 
     float share_numerator = t > 0.0 ? 2.0 * rr2 : root - t, share_denominator = t > 0.0 ? root * (root + t) : 2.0 * root;
     float NdotL = max(cn, 1e-4);
     float visibility_numerator, visibility_denominator;
-    if (s.brdf == FACET_BRDF_GLTF) {
-        // V_SmithGGXCorrelated
-        float gv = NdotL * sqrt(NdotV * NdotV * (1.0 - a2) + a2);
-        float gl = NdotV * sqrt(NdotL * NdotL * (1.0 - a2) + a2);
-        visibility_numerator = gv + gl > 0.0 ? 0.5 : 0.0;
-        visibility_denominator = max(gv + gl, 1e-30);
-    } else {
-        // G_Smith(k_ibl) / (4 n.l n.v): Schlick-GGX's n.v and n.l cancel,
-        // 1 / (4 (n.v (1 - k) + k) (n.l (1 - k) + k)).
-        float k = k_ibl(s.roughness);
-        visibility_numerator = NdotV > 0.0 ? 1.0 : 0.0;
-        visibility_denominator = max(4.0 * (NdotV * (1.0 - k) + k) * (NdotL * (1.0 - k) + k), 1e-30);
-    }
+    facet_disk_visibility(s, NdotV, NdotL, a2, visibility_numerator, visibility_denominator);
     // 4 (v.h) / (n.h) = 4 (v.h)^2 (n.h)^2 q.
     return visibility_numerator * share_numerator / (visibility_denominator * share_denominator) * NdotL * 4.0 *
            VdotH * VdotH * NdotH * NdotH * q * scale;
@@ -667,17 +674,7 @@ float facet_disk_point_lobe(FacetSurface s, vec3 v, float NdotV, FacetDiskLight 
     float NdotL = max(NdotC, 1e-4);
     float d = NdotH * NdotH * (a2 - 1.0) + 1.0;  // D = a2 / (pi d^2)
     float visibility_numerator, visibility_denominator;
-    if (s.brdf == FACET_BRDF_GLTF) {
-        // V_SmithGGXCorrelated
-        float gv = NdotL * sqrt(NdotV * NdotV * (1.0 - a2) + a2);
-        float gl = NdotV * sqrt(NdotL * NdotL * (1.0 - a2) + a2);
-        visibility_numerator = gv + gl > 0.0 ? 0.5 : 0.0;
-        visibility_denominator = max(gv + gl, 1e-30);
-    } else {
-        float k = k_ibl(s.roughness);
-        visibility_numerator = NdotV > 0.0 ? 1.0 : 0.0;
-        visibility_denominator = max(4.0 * (NdotV * (1.0 - k) + k) * (NdotL * (1.0 - k) + k), 1e-30);
-    }
+    facet_disk_visibility(s, NdotV, NdotL, a2, visibility_numerator, visibility_denominator);
     // D's curvature across the cap (second order): GGX in slope space is f(u) = (1 + u)^-2
     // with u = |m|^2 / alpha^2, and its mean over a disk of radius r there is f + r^2 / 8
     // times its Laplacian, f (1 + (r^2 / alpha^2) (2 u - 1) / (1 + u)^2). With r^2 =
