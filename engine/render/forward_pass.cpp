@@ -210,7 +210,7 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     // A material whose roughness is a constant of its pipeline (no roughness texture, no layer
     // or lobe of another roughness reading the disks) gets the disks its lobe tells apart
     // (render/lobe_disks.h): a rough lobe integrates a softbox's pieces as one cap, and the
-    // caps it is three times wider than as points (FACET_DISK_POINT_i).
+    // caps it is three times wider than as points (FACET_DISK_POINTS).
     const bool constant_roughness = !scene.has_texture(material, TextureSlot::metallic_roughness);
     const std::vector<ShaderDefine>* disks = &pass_disks.all;
     if (ibl && !mirror && !settings.environment_lights.empty() && constant_roughness && disks_at_own_roughness) {
@@ -224,9 +224,10 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
                 merged_defines = std::move(*made);
             }
             // The caps this lobe is much wider than, as points (facet_disk_point_lobe).
+            uint32_t points = 0;
             for (size_t i = 0; i < merged.size(); ++i)
-                if (disk_is_point_for_lobe(merged[i], m.roughness))
-                    merged_defines.push_back({"FACET_DISK_POINT_" + std::to_string(i), "1"});
+                if (disk_is_point_for_lobe(merged[i], m.roughness)) points |= 1u << i;
+            if (points) merged_defines.push_back({"FACET_DISK_POINTS", std::to_string(points)});
             found = pass_disks.by_roughness.emplace(m.roughness, std::move(merged_defines)).first;
         }
         disks = &found->second;

@@ -26,13 +26,14 @@ namespace facet {
 std::array<bool, 8> material_shading_groups(const Material& m) {
     // The bands of facet-bench accuracy's measure (reference/final_image_accuracy.h); the
     // probe's groups (render/error_prediction.cpp) and the session's group labels follow them.
-    constexpr float band_lo[4] = {0.2f, 0.4f, 0.6f, 0.8f}, band_hi[4] = {0.4f, 0.6f, 0.8f, 1.0001f};
+    const auto& band_lo = kShadingGroupBandLow;
     const bool textured = m.metallic_roughness_texture.valid();
     const float hi = std::max(m.roughness, band_lo[0]), lo = std::max(textured ? 0.0f : m.roughness, band_lo[0]);
     const bool metal = m.metallic >= 0.5f, dielectric = m.metallic < 0.5f || textured;
     std::array<bool, 8> groups{};
-    for (size_t band = 0; band < 4; ++band) {
-        if (!(lo < band_hi[band] && hi >= band_lo[band])) continue;
+    for (size_t band = 0; band < band_lo.size(); ++band) {
+        const float band_hi = band + 1 < band_lo.size() ? band_lo[band + 1] : 1.0001f;
+        if (!(lo < band_hi && hi >= band_lo[band])) continue;
         groups[2 * band] = dielectric;
         groups[2 * band + 1] = metal;
     }

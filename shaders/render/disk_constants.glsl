@@ -60,55 +60,10 @@
 #define FACET_DISK_LIGHT_15 PackedLight(vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0))
 #endif
 
-// FACET_DISK_POINT_i: 1 where disk i is shaded as a point (facet_disk_point_lobe: the
-// material's lobe is much wider than the cap, render/lobe_disks.h), else 0.
-#ifndef FACET_DISK_POINT_0
-#define FACET_DISK_POINT_0 0
-#endif
-#ifndef FACET_DISK_POINT_1
-#define FACET_DISK_POINT_1 0
-#endif
-#ifndef FACET_DISK_POINT_2
-#define FACET_DISK_POINT_2 0
-#endif
-#ifndef FACET_DISK_POINT_3
-#define FACET_DISK_POINT_3 0
-#endif
-#ifndef FACET_DISK_POINT_4
-#define FACET_DISK_POINT_4 0
-#endif
-#ifndef FACET_DISK_POINT_5
-#define FACET_DISK_POINT_5 0
-#endif
-#ifndef FACET_DISK_POINT_6
-#define FACET_DISK_POINT_6 0
-#endif
-#ifndef FACET_DISK_POINT_7
-#define FACET_DISK_POINT_7 0
-#endif
-#ifndef FACET_DISK_POINT_8
-#define FACET_DISK_POINT_8 0
-#endif
-#ifndef FACET_DISK_POINT_9
-#define FACET_DISK_POINT_9 0
-#endif
-#ifndef FACET_DISK_POINT_10
-#define FACET_DISK_POINT_10 0
-#endif
-#ifndef FACET_DISK_POINT_11
-#define FACET_DISK_POINT_11 0
-#endif
-#ifndef FACET_DISK_POINT_12
-#define FACET_DISK_POINT_12 0
-#endif
-#ifndef FACET_DISK_POINT_13
-#define FACET_DISK_POINT_13 0
-#endif
-#ifndef FACET_DISK_POINT_14
-#define FACET_DISK_POINT_14 0
-#endif
-#ifndef FACET_DISK_POINT_15
-#define FACET_DISK_POINT_15 0
+// FACET_DISK_POINTS: bit i set where disk i is shaded as a point (facet_disk_point_lobe: the
+// material's lobe is much wider than the cap, render/lobe_disks.h).
+#ifndef FACET_DISK_POINTS
+#define FACET_DISK_POINTS 0
 #endif
 
 #endif

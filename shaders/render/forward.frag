@@ -395,7 +395,7 @@ void main() {
     if (i < DISK_LIGHTS) {                                                                                         \
         vec3 disk_diffuse, disk_specular, disk_through = vec3(0.0);                                                \
         FacetDiskLight disk = unpack_disk_light(FACET_DISK_LIGHT_##i);                                             \
-        facet_disk_light(s, v, NdotV, disk, FACET_DISK_POINT_##i != 0, disk_diffuse, disk_specular);               \
+        facet_disk_light(s, v, NdotV, disk, ((FACET_DISK_POINTS >> i) & 1) != 0, disk_diffuse, disk_specular);     \
         FACET_DISK_THROUGH(disk)                                                                                   \
         FACET_DISK_SHEEN(disk)                                                                                     \
         FACET_DISK_CLEARCOAT(disk)                                                                                 \

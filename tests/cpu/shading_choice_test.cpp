@@ -7,6 +7,7 @@
 #include <limits>
 #include <vector>
 
+#include <facet/reference/final_image_accuracy.h>
 #include <facet/render/shading_method.h>
 #include <facet/scene/scene.h>
 #include "render/shading_choice.h"
@@ -96,6 +97,15 @@ TEST(ShadingChoice, TwoLookupsWhereTheyAreWithinOrTheTargetIsOutOfReach) {
     EXPECT_TRUE(u.bend[2]);
     const std::array<bool, 8> in_reach_again = {true, false, false, false, false, true, false, false};
     EXPECT_EQ(u.two, in_reach_again) << "without group 2 the frame is in reach again: two only within the threshold";
+}
+
+// The engine's roughness bands are the measure's (reference/final_image_accuracy.h).
+TEST(ShadingChoice, GroupBandsAreTheMeasures) {
+    for (int g = 0; g < 8; ++g) {
+        const test::GroupError e = test::measure_group(g);
+        EXPECT_FLOAT_EQ(float(e.roughness_min), kShadingGroupBandLow[size_t(g / 2)]) << "group " << g;
+        if (g / 2 + 1 < 4) EXPECT_FLOAT_EQ(float(e.roughness_max), kShadingGroupBandLow[size_t(g / 2 + 1)]) << "group " << g;
+    }
 }
 
 // The groups a material can fall in: its band and class; a metallic-roughness texture

@@ -63,6 +63,11 @@ struct ShadingChoice {
     std::vector<std::string> two_lookup_groups;
 };
 
+// The lower edges of issue 13's roughness bands ([0.2,0.4) [0.4,0.6) [0.6,0.8) [0.8,1]; the
+// measure's own definition: reference/final_image_accuracy.h, measure_group); group g is band
+// g / 2, metal where g is odd.
+inline constexpr std::array<float, 4> kShadingGroupBandLow = {0.2f, 0.4f, 0.6f, 0.8f};
+
 struct Material;
 // The groups of issue 13's measure (index 2 x roughness band + metal) a material's pixels
 // can fall in: its roughness factor's band, or every band up to it where a

@@ -10,6 +10,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <facet/render/shading_method.h>
+
 namespace facet {
 
 inline constexpr uint32_t kSpecularLobeTableWidth = 27;   // 3 texels x 9 n.v columns (0.1 .. 0.9)
@@ -24,11 +26,11 @@ inline constexpr uint32_t kSpecularLobeTableHeight = 18;  // 2 BRDF models x 9 r
 // of reach and they are about as good (render/shading_choice.h, kTwoLookupsTolerance).
 inline constexpr float kTwoLookupsRoughness = 0.6f;
 
-// Those bands as groups of issue 13's measure (index 2 x band + metal; bands of roughness 0.2
-// wide from 0.2, render/shading_method.h): FrameSettings::two_lookup_groups' default.
+// Those bands as groups of issue 13's measure (kShadingGroupBandLow, render/shading_method.h):
+// FrameSettings::two_lookup_groups' default.
 constexpr std::array<bool, 8> default_two_lookup_groups() {
     std::array<bool, 8> groups{};
-    for (std::size_t g = 0; g < groups.size(); ++g) groups[g] = 0.2f + 0.2f * float(g / 2) >= kTwoLookupsRoughness - 1e-4f;
+    for (std::size_t g = 0; g < groups.size(); ++g) groups[g] = kShadingGroupBandLow[g / 2] >= kTwoLookupsRoughness - 1e-4f;
     return groups;
 }
 inline constexpr std::array<bool, 8> kDefaultTwoLookupGroups = default_two_lookup_groups();
