@@ -9,7 +9,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <future>
 #include <optional>
 #include <vector>
 
@@ -23,7 +22,6 @@
 #include <facet/ibl/baked_environment.h>
 #include <facet/io/atomic_file.h>
 #include <facet/io/environment_image.h>
-#include <facet/io/image_io.h>
 #include <facet/io/output_set.h>
 #include <facet/shader/program_cache.h>
 
@@ -78,9 +76,6 @@ int bake(const Options& o) {
                      o.out_dir.c_str());
         return 0;
     }
-    // The files written at the end need the image module: loaded meanwhile, beside the
-    // device's start and the shaders' compilation (waited for on every way out).
-    std::future<void> image_io = std::async(std::launch::async, preload_image_io);
     const std::unique_ptr<Context> vulkan = start_vulkan(o.device, o.validation);
     Context& context = *vulkan;
     // Sizes the device cannot hold fail before anything is created or written.

@@ -22,7 +22,9 @@ uint32_t light_split_level(std::span<const DiskLight> lights, uint32_t /*specula
 
 std::vector<std::string> bake_warnings(const EnvironmentSource& analysed, const IblSettings& resolved) {
     if (analysed.sky || analysed.image.rgba.empty()) return {};
-    return method_warnings(environment_stats(analysed.image.rgba, analysed.width, analysed.height), resolved);
+    return method_warnings(environment_stats(analysed.image.rgba, analysed.width, analysed.height,
+                                             method_warnings_read_content(resolved)),
+                           resolved);
 }
 
 // What a bake makes of the same input and settings: bumped with every change to the

@@ -249,7 +249,7 @@ Result<BakedEnvironment> bake(Context& context, ProgramCache& programs, const En
             return image;
         }
         format = VK_FORMAT_R16G16B16A16_SFLOAT;
-        return convert_to_half(context, image, kBakedLayout, std::string("baked ") + what);
+        return convert_to_half(programs, image, kBakedLayout, std::string("baked ") + what);
     };
     A::environment(out) = std::move(r.environment);
     A::cube(out) = keep(std::move(r.cube), "environment cube", meta.cube_format);

@@ -90,34 +90,46 @@ std::vector<OutputRange> read_output_ranges(Context& context, const Buffer& rang
     return out;
 }
 
-Image convert_to_half(Context& context, const Image& rgba32f, VkImageLayout layout, const std::string& name) {
+Image convert_to_half(ProgramCache& programs, Image& rgba32f, VkImageLayout layout, const std::string& name) {
+    Context& context = programs.context();
+    const Pipeline* convert = or_throw(programs.compute("ibl/to_half.comp"));
     ImageDesc desc = rgba32f.desc();
     desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-    Image half = or_throw(Image::create(
-        context, desc, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, name));
+    Image half = or_throw(Image::create(context, desc,
+                                        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
+                                            VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                        name));
+    // The views are made before recording (the images keep them).
+    std::vector<std::pair<VkImageView, VkImageView>> views;
+    for (uint32_t m = 0; m < desc.mip_levels; ++m) {
+        const VkImageSubresourceRange level{VK_IMAGE_ASPECT_COLOR_BIT, m, 1, 0, desc.array_layers};
+        views.emplace_back(or_throw(rgba32f.view(level, VK_IMAGE_VIEW_TYPE_2D_ARRAY)),
+                           or_throw(half.view(level, VK_IMAGE_VIEW_TYPE_2D_ARRAY)));
+    }
     const VkImageSubresourceRange all = whole_range(desc);
     or_throw(context.submit_and_wait([&](VkCommandBuffer cmd) {
         // The graph's run has completed (its fence was waited on); its writes were made
-        // available by the final barriers, so the blit's reads wait on those.
-        image_barrier(cmd, rgba32f.handle(), all, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_BLIT_BIT,
-                      VK_ACCESS_2_TRANSFER_READ_BIT);
-        image_barrier(cmd, half.handle(), all, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                      VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_BLIT_BIT,
-                      VK_ACCESS_2_TRANSFER_WRITE_BIT);
-        std::vector<VkImageBlit> regions;
+        // available by the final barriers, so the reads here wait on those.
+        image_barrier(cmd, rgba32f.handle(), all, layout, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                      VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+        image_barrier(cmd, half.handle(), all, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                      VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        convert->bind(cmd);
+        const auto local = convert->workgroup_size();
         for (uint32_t m = 0; m < desc.mip_levels; ++m) {
-            VkImageBlit r{};
-            r.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m, 0, desc.array_layers};
-            r.dstSubresource = r.srcSubresource;
-            r.srcOffsets[1] = r.dstOffsets[1] = {int32_t(desc.mip_width(m)), int32_t(desc.mip_height(m)), 1};
-            regions.push_back(r);
+            const DescriptorWrite writes[] = {DescriptorWrite::storage_image(views[m].first),
+                                              DescriptorWrite::storage_image(views[m].second)};
+            convert->push_descriptors(cmd, writes);
+            vkCmdDispatch(cmd, group_count(desc.mip_width(m), local[0]), group_count(desc.mip_height(m), local[1]),
+                          desc.array_layers);
         }
-        // Same size, nearest: a pure format conversion.
-        vkCmdBlitImage(cmd, rgba32f.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, half.handle(),
-                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, uint32_t(regions.size()), regions.data(), VK_FILTER_NEAREST);
-        image_barrier(cmd, half.handle(), all, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, kBakedLayout,
-                      VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+        image_barrier(cmd, rgba32f.handle(), all, VK_IMAGE_LAYOUT_GENERAL, layout,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                      VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+        image_barrier(cmd, half.handle(), all, VK_IMAGE_LAYOUT_GENERAL, kBakedLayout,
+                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                       VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
     }, "converting a baked output to RGBA16F"));
     return half;

@@ -40,9 +40,9 @@ struct OutputRange {
 };
 std::vector<OutputRange> read_output_ranges(Context& context, const Buffer& ranges, size_t count);
 
-// A copy of `rgba32f` (every level and layer, in `layout`) in RGBA16F, made by the GPU
-// (a blit rounds each value to the nearest half), left in kBakedLayout; `rgba32f` stays
-// as it is and may be dropped afterwards.
-Image convert_to_half(Context& context, const Image& rgba32f, VkImageLayout layout, const std::string& name);
+// A copy of `rgba32f` (every level and layer, in `layout`, made with storage use) in
+// RGBA16F, made by a compute pass (ibl/to_half.comp: each value rounded to a half by the
+// store), left in kBakedLayout; `rgba32f` is left in `layout` and may be dropped afterwards.
+Image convert_to_half(ProgramCache& programs, Image& rgba32f, VkImageLayout layout, const std::string& name);
 
 }  // namespace facet

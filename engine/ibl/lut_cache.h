@@ -17,7 +17,7 @@ namespace facet {
 class ProgramCache;
 
 // "brdf-lut-MODEL-SIZE-SAMPLES-HASH", the hash of the two shaders' cache keys (their
-// preprocessed sources): an edited shader makes another entry.
+// sources with their includes): an edited shader makes another entry.
 Result<std::string> brdf_lut_cache_key(ProgramCache& programs, const BrdfLutSettings& settings);
 
 // The entry's texels (RGBA32F, size x size) or nothing. `note` says why an entry that was

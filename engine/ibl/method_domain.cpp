@@ -9,12 +9,18 @@
 
 namespace facet {
 
-EnvironmentStats environment_stats(std::span<const float> rgba, uint32_t width, uint32_t height) {
+EnvironmentStats environment_stats(std::span<const float> rgba, uint32_t width, uint32_t height, bool content) {
     EnvironmentStats stats;
     stats.width = width;
     stats.height = height;
     const size_t n = size_t(width) * height;
     if (n == 0) return stats;
+    if (!content) {
+        stats.black = true;
+        for (size_t i = 0; i < n && stats.black; ++i)
+            stats.black = !(luminance(rgba[i * 4], rgba[i * 4 + 1], rgba[i * 4 + 2]) > 0);
+        return stats;
+    }
     std::vector<double> lum(n);
     double peak = 0;
     for (size_t i = 0; i < n; ++i) {
@@ -53,6 +59,14 @@ std::string documented_bound(SpecularMethod method, uint32_t sample_count) {
     case SpecularMethod::mips: return "none: a box filter, not a GGX lobe";
     }
     return "";
+}
+
+bool method_warnings_read_content(const IblSettings& settings) {
+    const SpecularSettings& sp = settings.specular;
+    return (settings.want_irradiance && settings.irradiance.method != IrradianceMethod::convolve) ||
+           (settings.want_specular &&
+            (sp.method == SpecularMethod::mips || sp.method == SpecularMethod::importance ||
+             (sp.method == SpecularMethod::filtered && sp.sample_count < 1024)));
 }
 
 std::vector<std::string> method_warnings(const EnvironmentStats& s, const IblSettings& settings) {

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include <facet/core/hash.h>
 #include <facet/core/log.h>
@@ -135,6 +136,50 @@ Result<Spirv> with_reflection(std::vector<uint32_t> words, uint64_t key, std::st
     return Spirv{std::move(words), key, std::move(reflection).value()};
 }
 
+// The `#include` lines of `text` (#include "x" or <x>, spaces allowed around the #).
+template <typename F>
+void for_each_include(std::string_view text, F&& visit) {
+    auto skip_space = [&](size_t i, size_t end) {
+        while (i < end && (text[i] == ' ' || text[i] == '\t')) ++i;
+        return i;
+    };
+    for (size_t pos = 0; pos < text.size();) {
+        size_t end = text.find('\n', pos);
+        if (end == std::string_view::npos) end = text.size();
+        size_t i = skip_space(pos, end);
+        pos = end + 1;
+        if (i >= end || text[i] != '#') continue;
+        i = skip_space(i + 1, end);
+        if (text.compare(i, 7, "include") != 0) continue;
+        i = skip_space(i + 7, end);
+        if (i >= end || (text[i] != '"' && text[i] != '<')) continue;
+        const char close = text[i] == '"' ? '"' : '>';
+        const size_t stop = text.find(close, i + 1);
+        if (stop == std::string_view::npos || stop > end) continue;
+        visit(text.substr(i + 1, stop - i - 1), close == '"');
+    }
+}
+
+// Every file a source may read, each once, by name and text: what its #include lines
+// name, followed through the library as glslang's includer does. Lines in comments and
+// inactive branches count too, so the key may change when the SPIR-V would not, never
+// the other way round. Costs no glslang: a cache hit never starts it (its built-in
+// declarations alone take ~60 ms to parse on a first preprocess).
+void add_sources(const ShaderLibrary& library, std::string_view name, std::string_view text, Hash64& hash,
+                 std::set<std::string>& seen) {
+    for_each_include(text, [&](std::string_view header, bool local) {
+        auto found = library.find_include(header, name, local);
+        if (!found) {
+            hash.add("missing ").add(header);  // glslang reports it when it compiles
+            return;
+        }
+        if (!seen.insert(found->name).second) return;
+        const uint64_t size = found->text.size();
+        hash.add(found->name).add(&size, sizeof size).add(found->text);
+        add_sources(library, found->name, found->text, hash, seen);
+    });
+}
+
 }  // namespace
 
 const char* stage_name(ShaderStage stage) {
@@ -164,11 +209,12 @@ Result<Spirv> ShaderCompiler::compile_source(ShaderStage stage, std::string_view
     glslang_frontend::Input input{stage, std::string(name), std::string(text), {}, options_.debug_info};
     for (const ShaderDefine& d : defines) input.preamble += "#define " + d.name + " " + d.value + "\n";
 
-    auto preprocessed = glslang_frontend::preprocess(library_, input);
-    if (!preprocessed) return preprocessed.error();
-    const uint64_t key = Hash64()
-                             .add(*preprocessed)
-                             .add(input.preamble)
+    Hash64 sources;
+    const uint64_t size = text.size();
+    sources.add(name).add(&size, sizeof size).add(text);
+    std::set<std::string> seen;
+    add_sources(library_, name, text, sources, seen);
+    const uint64_t key = sources.add(input.preamble)
                              .add(stage_name(stage))
                              .add(options_.debug_info ? "debug" : "release")
                              .add(glslang_frontend::toolchain_tag())

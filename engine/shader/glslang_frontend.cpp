@@ -30,37 +30,28 @@ EShLanguage to_glslang(ShaderStage stage) {
     return EShLangCompute;
 }
 
-std::string folder_of(const std::string& name) {
-    auto slash = name.rfind('/');
-    return slash == std::string::npos ? "" : name.substr(0, slash + 1);
-}
-
 // Resolves "x.glsl" relative to the including file, then from the shaders/ root.
 class LibraryIncluder : public glslang::TShader::Includer {
 public:
     explicit LibraryIncluder(const ShaderLibrary& library) : library_(library) {}
 
     IncludeResult* includeLocal(const char* header, const char* includer, size_t) override {
-        std::string relative = normalize_shader_path(folder_of(includer) + header);
-        if (auto r = find(relative)) return r;
-        return find(normalize_shader_path(header));
+        return result(library_.find_include(header, includer, true));
     }
-    IncludeResult* includeSystem(const char* header, const char*, size_t) override {
-        return find(normalize_shader_path(header));
+    IncludeResult* includeSystem(const char* header, const char* includer, size_t) override {
+        return result(library_.find_include(header, includer, false));
     }
     void releaseInclude(IncludeResult* result) override {
         if (!result) return;
-        delete static_cast<std::string*>(result->userData);
+        delete static_cast<ShaderLibrary::Source*>(result->userData);
         delete result;
     }
 
 private:
-    IncludeResult* find(const std::string& name) {
-        if (name.empty()) return nullptr;
-        auto text = library_.load(name);
-        if (!text) return nullptr;
-        auto* owned = new std::string(std::move(*text));
-        return new IncludeResult(name, owned->data(), owned->size(), owned);
+    static IncludeResult* result(std::optional<ShaderLibrary::Source> found) {
+        if (!found) return nullptr;
+        auto* owned = new ShaderLibrary::Source(std::move(*found));
+        return new IncludeResult(owned->name, owned->text.data(), owned->text.size(), owned);
     }
     const ShaderLibrary& library_;
 };
@@ -141,17 +132,6 @@ const std::string& toolchain_tag() {
                                    std::to_string(GLSLANG_VERSION_PATCH) + GLSLANG_VERSION_FLAVOR +
                                    ", Vulkan 1.3, SPIR-V 1.5";
     return tag;
-}
-
-Result<std::string> preprocess(const ShaderLibrary& library, const Input& input) {
-    auto prepared = prepare(input);
-    glslang::TShader* shader = prepared->shader.get();
-    LibraryIncluder includer(library);
-    std::string output;
-    if (!shader->preprocess(GetDefaultResources(), 460, ENoProfile, false, false, messages(input), &output,
-                            includer))
-        return Error{format_log(shader->getInfoLog(), library, input.name, input.text)};
-    return output;
 }
 
 Result<std::vector<uint32_t>> compile(const ShaderLibrary& library, const Input& input) {

@@ -1,6 +1,5 @@
 #pragma once
-// The glslang calls behind ShaderCompiler: preprocessing (for the cache key) and
-// compilation to SPIR-V, with glslang's log turned into `file:line: error:` messages.
+// The glslang call behind ShaderCompiler: compilation to SPIR-V, with glslang's log turned into `file:line: error:` messages.
 #include <string>
 #include <string_view>
 #include <vector>
@@ -23,8 +22,6 @@ struct Input {
 // Part of every cache key, so an upgrade or a new target never serves old entries.
 const std::string& toolchain_tag();
 
-// The source with every #include expanded and macros applied.
-Result<std::string> preprocess(const ShaderLibrary& library, const Input& input);
 Result<std::vector<uint32_t>> compile(const ShaderLibrary& library, const Input& input);
 
 // glslang's info log as `file:line: error: message` lines, each followed by the source

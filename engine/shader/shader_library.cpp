@@ -27,6 +27,22 @@ std::optional<std::string> ShaderLibrary::load(std::string_view name) const {
     return std::nullopt;
 }
 
+std::optional<ShaderLibrary::Source> ShaderLibrary::find_include(std::string_view header, std::string_view includer,
+                                                                bool local) const {
+    auto find = [&](std::string name) -> std::optional<Source> {
+        if (name.empty()) return std::nullopt;
+        auto text = load(name);
+        if (!text) return std::nullopt;
+        return Source{std::move(name), std::move(*text)};
+    };
+    if (local) {
+        const size_t slash = includer.rfind('/');
+        const std::string_view folder = slash == std::string_view::npos ? "" : includer.substr(0, slash + 1);
+        if (auto found = find(normalize_shader_path(std::string(folder) + std::string(header)))) return found;
+    }
+    return find(normalize_shader_path(header));
+}
+
 std::string normalize_shader_path(std::string_view path) {
     std::vector<std::string> parts;
     std::size_t start = 0;

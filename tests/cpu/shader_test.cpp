@@ -184,6 +184,39 @@ TEST(ShaderCompiler, MemoryCacheHitsAndEditedIncludeRecompiles) {
     EXPECT_EQ(compiler.stats().compiles, 2u);
 }
 
+// The key follows includes of includes, found as glslang finds them (beside the includer,
+// then from the root), and a define: each edit compiles again, the same text does not.
+TEST(ShaderCompiler, KeyFollowsNestedIncludesAndDefines) {
+    TempDir dir;
+    dir.write("lib/outer.glsl", "#include \"inner.glsl\"\n#include <root.glsl>\n");
+    dir.write("lib/inner.glsl", "const float INNER = 1.0;\n");
+    dir.write("root.glsl", "const float ROOT = 1.0;\n");
+    const std::string main =
+        "#version 460\n  #  include \"lib/outer.glsl\"\nlayout(local_size_x = 1) in;\n"
+        "layout(std430, binding = 0) buffer B { float v[]; };\nvoid main() { v[0] = INNER + ROOT + SCALE; }\n";
+    ShaderCompilerOptions options;
+    options.source_dir = dir.path.string();
+    ShaderCompiler compiler(options);
+    const ShaderDefine one{"SCALE", "1.0"}, two{"SCALE", "2.0"};
+    auto compile = [&](const ShaderDefine& d) {
+        auto spirv = compiler.compile_source(ShaderStage::compute, "main.comp", main, std::span(&d, 1));
+        EXPECT_TRUE(spirv) << (spirv ? "" : spirv.error().message);
+        return spirv ? spirv->key : 0;
+    };
+    const uint64_t first = compile(one);
+    EXPECT_EQ(compile(one), first);
+    EXPECT_EQ(compiler.stats().compiles, 1u);
+    dir.write("lib/inner.glsl", "const float INNER = 2.0;\n");
+    const uint64_t inner = compile(one);
+    EXPECT_NE(inner, first);
+    dir.write("root.glsl", "const float ROOT = 2.0;\n");
+    const uint64_t root = compile(one);
+    EXPECT_NE(root, inner);
+    EXPECT_NE(compile(two), root);
+    EXPECT_EQ(compiler.stats().compiles, 4u);
+    EXPECT_EQ(compiler.stats().memory_hits, 1u);
+}
+
 TEST(ShaderCompiler, DiskCacheIsReusedAndDamagedEntriesRecompiled) {
     TempDir cache;
     ShaderCompilerOptions options;

@@ -3,8 +3,8 @@
 // that host devices without maintenance4 accept it).
 // #include "x.glsl" resolves against the including file's folder, then shaders/;
 // errors read `file:line: error: message` followed by the offending source line.
-// Results are cached in memory (and optionally on disk) by a hash of the preprocessed
-// source, so an edited include changes the key. Each result carries the shader's
+// Results are cached in memory (and optionally on disk) by a hash of the source, the
+// files its #include lines name and the defines, so an edited include changes the key. Each result carries the shader's
 // interface (bindings, push-constant size, workgroup size) read from its SPIR-V.
 #include <cstdint>
 #include <map>
@@ -29,7 +29,7 @@ struct ShaderDefine {
 
 struct Spirv {
     std::vector<uint32_t> words;
-    uint64_t key = 0;             // cache key: preprocessed source + stage + options
+    uint64_t key = 0;             // cache key: sources (with includes) + defines + stage + options
     ShaderReflection reflection;  // what the pipeline running `words` must provide
 };
 

@@ -16,6 +16,14 @@ public:
 
     // The text of `name` (a path relative to shaders/), or nothing.
     std::optional<std::string> load(std::string_view name) const;
+
+    struct Source {
+        std::string name;  // relative to shaders/
+        std::string text;
+    };
+    // What `#include "header"` in `includer` reads: the file beside the includer, else the
+    // one at the shaders/ root; `#include <header>` (local false): the root's only.
+    std::optional<Source> find_include(std::string_view header, std::string_view includer, bool local) const;
     const std::string& source_dir() const { return source_dir_; }
 
 private:
