@@ -10,6 +10,7 @@
 #include <facet/core/hash.h>
 #include "io/box_downsample.h"
 #include "io/exr_header.h"
+#include "io/image_codecs.h"
 #include "io/image_module_loader.h"
 
 namespace facet {
@@ -56,9 +57,14 @@ struct RowChecker {
     }
 };
 
+// The file's rows in order from the top, each `channels` floats a texel; an Error from
+// `row` ends the reading with it.
+using EnvironmentRow = std::function<std::optional<Error>(const float* raw, uint32_t y)>;
+using EnvironmentRows = std::function<Status(const EnvironmentRow& row)>;
+
 // Reads the file a band of rows at a time and hands each row to `row` (raw channels).
 Status read_bands(const FacetImageModule& module, FacetImageReader& in, const FacetImageSpec& spec,
-                  const std::string& path, const std::function<std::optional<Error>(const float*, uint32_t)>& row) {
+                  const std::string& path, const EnvironmentRow& row) {
     const uint32_t w = uint32_t(spec.width), h = uint32_t(spec.height);
     const bool tiled = spec.tile_width > 0;
     const uint32_t band = tiled ? uint32_t(std::max(spec.tile_height, 1)) : std::min(kBandRows, h);
@@ -79,35 +85,17 @@ Status read_bands(const FacetImageModule& module, FacetImageReader& in, const Fa
     return Ok{};
 }
 
-}  // namespace
-
-Result<EnvironmentImage> load_environment(const std::string& path, const EnvironmentLoadOptions& options) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) return Error{path + ": no such file"};
-    if (std::filesystem::is_directory(path, ec)) return Error{path + ": is a directory, not an image"};
-    if (std::string problem = check_exr_attribute_sizes(path); !problem.empty()) return Error{path + ": " + problem};
-    auto module = image_module();
-    if (!module) return Error{path + ": " + module.error().message};
-    // Opening reads the header only: the size is known before any texel is.
-    char* reason = nullptr;
-    ImageReader in(module.value()->open_file(path.c_str(), &reason), {module.value()});
-    if (!in) {
-        std::string text = take_module_text(*module.value(), reason);
-        if (text.empty()) text = "not an image OpenImageIO can read";
-        return Error{path + ": cannot read the image: " + text};
-    }
-    FacetImageSpec spec;
-    module.value()->spec(in.get(), &spec);
-    if (spec.width <= 0 || spec.height <= 0) return Error{path + ": the image has zero size"};
-    const uint64_t w = uint64_t(spec.width), h = uint64_t(spec.height);
+// What every file shares once its header is read: the size limits (before anything is
+// allocated), the texel checks, downsampling while reading, and the content hash.
+Result<EnvironmentImage> decode_environment(const std::string& path, uint64_t w, uint64_t h, int channels,
+                                            const EnvironmentLoadOptions& options, const EnvironmentRows& read) {
+    if (w == 0 || h == 0) return Error{path + ": the image has zero size"};
     if (w > kMaxEnvironmentSide || h > kMaxEnvironmentSide || w * h > kMaxEnvironmentTexels)
         return Error{path + ": " + size_text(w, h) + " is larger than an environment may be (at most " +
                      std::to_string(kMaxEnvironmentSide) + " texels a side and " + size_text(65536, 32768) +
                      " texels in all); refused before reading it"};
-    const int channels = spec.channels;
     if (channels != 1 && channels != 3 && channels != 4)
         return Error{path + ": " + std::to_string(channels) + " channels; an environment needs 1 (grey), 3 or 4"};
-    if (spec.depth > 1) return Error{path + ": a volume image (depth " + std::to_string(spec.depth) + ")"};
 
     EnvironmentImage env;
     env.source_width = uint32_t(w);
@@ -128,14 +116,13 @@ Result<EnvironmentImage> load_environment(const std::string& path, const Environ
     if (env.downsampled())
         box.emplace(env.source_width, env.source_height, env.width, env.height, 3, RowWeights::equirect_solid_angle,
                     [&](uint32_t y, const double* rgb) { store(y, [&](uint32_t x, int c) { return rgb[x * 3 + c]; }); });
-    Status read = read_bands(*module.value(), *in, spec, path, [&](const float* raw, uint32_t y) -> std::optional<Error> {
+    Status status = read([&](const float* raw, uint32_t y) -> std::optional<Error> {
         if (auto e = checker.convert(raw, y)) return e;
         if (box) box->add_row(checker.rgb.data());
         else store(y, [&](uint32_t x, int c) { return checker.rgb[x * 3 + c]; });
         return std::nullopt;
     });
-    if (!read) return read.error();
-    in.reset();
+    if (!status) return status.error();
     env.sanitized_texels = checker.sanitized;
 
     Hash64 hash;
@@ -143,6 +130,47 @@ Result<EnvironmentImage> load_environment(const std::string& path, const Environ
     hash.add(env.rgba.data(), env.rgba.size() * sizeof(float));
     env.content_hash = hash.hex();
     return env;
+}
+
+}  // namespace
+
+Result<EnvironmentImage> load_environment(const std::string& path, const EnvironmentLoadOptions& options) {
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) return Error{path + ": no such file"};
+    if (std::filesystem::is_directory(path, ec)) return Error{path + ": is a directory, not an image"};
+    // Radiance files (by their first line) are read here, without the image module;
+    // those this reader declines go to the module with every other format.
+    auto rgbe = codec::RgbeReader::open(path);
+    if (!rgbe) return Error{path + ": cannot read the image: " + rgbe.error().message};
+    if (std::optional<codec::RgbeReader>& in = *rgbe; in)
+        return decode_environment(path, in->width(), in->height(), 3, options, [&](const EnvironmentRow& row) -> Status {
+            std::vector<float> rgb(size_t(in->width()) * 3);
+            for (uint32_t y = 0; y < uint32_t(in->height()); ++y) {
+                if (Status s = in->read_row(rgb.data()); !s)
+                    return Error{path + ": the image data is damaged or truncated: " + s.error().message};
+                if (auto e = row(rgb.data(), y)) return *e;
+            }
+            return Ok{};
+        });
+
+    if (std::string problem = check_exr_attribute_sizes(path); !problem.empty()) return Error{path + ": " + problem};
+    auto module = image_module();
+    if (!module) return Error{path + ": " + module.error().message};
+    // Opening reads the header only: the size is known before any texel is.
+    char* reason = nullptr;
+    ImageReader in(module.value()->open_file(path.c_str(), &reason), {module.value()});
+    if (!in) {
+        std::string text = take_module_text(*module.value(), reason);
+        if (text.empty()) text = "not an image OpenImageIO can read";
+        return Error{path + ": cannot read the image: " + text};
+    }
+    FacetImageSpec spec;
+    module.value()->spec(in.get(), &spec);
+    if (spec.depth > 1) return Error{path + ": a volume image (depth " + std::to_string(spec.depth) + ")"};
+    return decode_environment(path, uint64_t(std::max(spec.width, 0)), uint64_t(std::max(spec.height, 0)),
+                              spec.channels, options, [&](const EnvironmentRow& row) {
+                                  return read_bands(*module.value(), *in, spec, path, row);
+                              });
 }
 
 }  // namespace facet

@@ -1,11 +1,13 @@
 #include <facet/io/image_io.h>
 
 #include <algorithm>
-#include <initializer_list>
-#include <memory>
-#include <vector>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <functional>
 
 #include <facet/io/atomic_file.h>
+#include "io/image_codecs.h"
 #include "io/image_module_loader.h"
 
 namespace facet {
@@ -19,16 +21,36 @@ std::string lower_extension(const std::string& path) {
     return ext;
 }
 
-// Writes `path` (a temporary name; messages name `final_path`) through the image module.
-Status write_image_file(const std::string& final_path, const std::string& path, uint32_t width, uint32_t height,
-                        uint32_t channels, FacetImagePixels pixels, const void* data,
-                        std::initializer_list<FacetImageAttribute> attributes) {
+Status check_image_buffer(const std::string& path, uint32_t width, uint32_t height, size_t values) {
+    if (values != size_t(width) * height * 4)
+        return Error{path + ": pixel buffer does not match " + std::to_string(width) + "x" + std::to_string(height)};
+    if (width == 0 || height == 0) return Error{path + ": an image of zero size cannot be written"};
+    return Ok{};
+}
+
+// Opens `temp` and has `encode` write it; messages name `path`, the file's final name.
+Status encode_image_file(const std::string& path, const std::string& temp,
+                         const std::function<Status(std::FILE*)>& encode) {
+    std::FILE* file = std::fopen(temp.c_str(), "wb");
+    if (!file) return Error{path + ": cannot open for writing: " + std::strerror(errno)};
+    Status written = encode(file);
+    const bool closed = std::fclose(file) == 0;  // the last buffered bytes are written here
+    if (!written) return Error{path + ": " + written.error().message};
+    if (!closed) return Error{path + ": write failed: " + std::strerror(errno)};
+    return Ok{};
+}
+
+// Writes `temp` through the image module (OpenImageIO, which chooses the format by the
+// extension); messages name `path`.
+Status write_through_module(const std::string& path, const std::string& temp, uint32_t width, uint32_t height,
+                            const uint8_t* rgba) {
     auto module = image_module();
-    if (!module) return Error{final_path + ": " + module.error().message};
+    if (!module) return Error{path + ": " + module.error().message};
+    // Our texels are straight (unassociated) alpha; stop OIIO from dividing by alpha.
+    const FacetImageAttribute straight{"oiio:UnassociatedAlpha", nullptr, 1};
     char* reason = nullptr;
-    if (!module.value()->write(path.c_str(), width, height, channels, pixels, data, attributes.begin(),
-                               attributes.size(), &reason))
-        return Error{final_path + ": " + take_module_text(*module.value(), reason)};
+    if (!module.value()->write(temp.c_str(), width, height, 4, FACET_IMAGE_UINT8, rgba, &straight, 1, &reason))
+        return Error{path + ": " + take_module_text(*module.value(), reason)};
     return Ok{};
 }
 
@@ -37,34 +59,23 @@ Status write_image_file(const std::string& final_path, const std::string& path, 
 void preload_image_io() { (void)image_module(); }
 
 Status write_hdr_image(const std::string& path, uint32_t width, uint32_t height, std::span<const float> rgba) {
-    if (rgba.size() != size_t(width) * height * 4)
-        return Error{path + ": pixel buffer does not match " + std::to_string(width) + "x" + std::to_string(height)};
+    if (Status s = check_image_buffer(path, width, height, rgba.size()); !s) return s;
     const std::string ext = lower_extension(path);
     if (ext != ".exr" && ext != ".hdr")
         return Error{path + ": HDR output must be .exr or .hdr"};
-    return write_atomically(path, [&](const std::string& temp) -> Status {
-        if (ext == ".hdr") {
-            std::vector<float> rgb(size_t(width) * height * 3);
-            for (size_t i = 0; i < size_t(width) * height; ++i)
-                for (int c = 0; c < 3; ++c) rgb[i * 3 + c] = rgba[i * 4 + c];
-            return write_image_file(path, temp, width, height, 3, FACET_IMAGE_FLOAT, rgb.data(), {});
-        }
-        // A fixed capture date: the same texels give the same file (reproducible bakes);
-        // when and how a file was made is recorded in its .json beside it.
-        return write_image_file(path, temp, width, height, 4, FACET_IMAGE_FLOAT, rgba.data(),
-                                {{"compression", "zip", 0}, {"DateTime", "1970:01:01 00:00:00", 0}});
+    return write_atomically(path, [&](const std::string& temp) {
+        return encode_image_file(path, temp, [&](std::FILE* out) {
+            return ext == ".exr" ? codec::write_exr(out, width, height, rgba.data())
+                                 : codec::write_rgbe(out, width, height, rgba.data());
+        });
     });
 }
 
 Status write_ldr_image(const std::string& path, uint32_t width, uint32_t height, std::span<const uint8_t> rgba) {
-    if (rgba.size() != size_t(width) * height * 4)
-        return Error{path + ": pixel buffer does not match " + std::to_string(width) + "x" + std::to_string(height)};
-    return write_atomically(path, [&](const std::string& temp) -> Status {
-        // Our texels are straight (unassociated) alpha; stop OIIO from dividing by alpha.
-        // zlib's fastest level: a 1024x512 preview in ~1/4 of the default's time, the file
-        // at most ~1.3x as large.
-        return write_image_file(path, temp, width, height, 4, FACET_IMAGE_UINT8, rgba.data(),
-                                {{"oiio:UnassociatedAlpha", nullptr, 1}, {"png:compressionLevel", nullptr, 1}});
+    if (Status s = check_image_buffer(path, width, height, rgba.size()); !s) return s;
+    return write_atomically(path, [&](const std::string& temp) {
+        if (lower_extension(path) != ".png") return write_through_module(path, temp, width, height, rgba.data());
+        return encode_image_file(path, temp, [&](std::FILE* out) { return codec::write_png(out, width, height, rgba.data()); });
     });
 }
 

@@ -3,7 +3,9 @@
 // the only code that calls OpenImageIO. OpenImageIO brings about 260 shared libraries
 // (codecs, OpenEXR, libraw, ffmpeg, ...) whose loading cost every process that linked
 // it ~640 ms of CPU at start, images or not; the engine loads the module (dlopen) the
-// first time an image is read or written instead (io/image_module_loader.cpp).
+// first time it reads an image other than a Radiance .hdr, or writes one other than
+// .png, .exr or .hdr (those are Facet's own: io/image_codecs.h), instead
+// (io/image_module_loader.cpp).
 // Plain C types only, so the two sides share no C++ layout; FACET_IMAGE_MODULE_ABI and
 // the Facet version are checked when the module is loaded.
 #include <cstddef>

@@ -1,6 +1,6 @@
 #pragma once
-// Equirectangular environments from files (.hdr, .exr and anything else OpenImageIO
-// reads as floating point), any size and aspect, checked texel by texel: NaN, Inf or
+// Equirectangular environments from files (.hdr, read by Facet's own decoder,
+// io/image_codecs.h; .exr and anything else OpenImageIO reads as floating point), any size and aspect, checked texel by texel: NaN, Inf or
 // negative radiance is an error naming the file and the first bad texel, unless the
 // caller asks for sanitising (then such texels become 0 and are counted).
 //
