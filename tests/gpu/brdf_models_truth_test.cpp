@@ -59,6 +59,14 @@ RenderJob spheres_job(BrdfModel model, const std::string& env) {
     return job;
 }
 
+// The reference renderer at 256 samples per pixel, no noise target: the same image every run.
+ReferenceSettings fixed_256_samples() {
+    ReferenceSettings rs;
+    rs.min_samples = rs.max_samples = 256;
+    rs.noise_target = 0;
+    return rs;
+}
+
 // One truth (final_image_truth of `truth_frame`'s views and hdr) measures several renders of
 // one frame: each must have the same views and cover the same pixels (the hdr's alpha), the
 // inputs that decide which pixels the truth sums and for which materials.
@@ -93,10 +101,7 @@ TEST(BrdfModelsTruth, EnvironmentLightingAndReferenceMatchEachModelsTruth) {
         ASSERT_TRUE(session) << session.error().message;
         auto frame = (*session)->render_frame();
         ASSERT_TRUE(frame) << frame.error().message;
-        ReferenceSettings rs;
-        rs.min_samples = rs.max_samples = 256;
-        rs.noise_target = 0;
-        auto reference = (*session)->render_reference(rs);
+        auto reference = (*session)->render_reference(fixed_256_samples());
         ASSERT_TRUE(reference) << reference.error().message;
         RenderJob lights_job = job;
         lights_job.extract_lights = true;
@@ -298,10 +303,7 @@ TEST(BrdfModelsTruth, ClearcoatLayerMatchesTheTruthUnderALightAndTheEnvironment)
     ASSERT_TRUE(session) << session.error().message;
     auto frame = (*session)->render_frame();
     ASSERT_TRUE(frame) << frame.error().message;
-    ReferenceSettings rs;
-    rs.min_samples = rs.max_samples = 256;
-    rs.noise_target = 0;
-    auto reference = (*session)->render_reference(rs);
+    auto reference = (*session)->render_reference(fixed_256_samples());
     ASSERT_TRUE(reference) << reference.error().message;
     const glm::vec3 e = (*session)->camera().position;
     const test::FinalImageTruth truth =
@@ -365,10 +367,7 @@ TEST(BrdfModelsTruth, ColouredSpecularMatchesTheTruthUnderALightAndTheEnvironmen
         ASSERT_TRUE(env_session) << env_session.error().message;
         auto env_frame = (*env_session)->render_frame();
         ASSERT_TRUE(env_frame) << env_frame.error().message;
-        ReferenceSettings rs;
-        rs.min_samples = rs.max_samples = 256;
-        rs.noise_target = 0;
-        auto reference = (*env_session)->render_reference(rs);
+        auto reference = (*env_session)->render_reference(fixed_256_samples());
         ASSERT_TRUE(reference) << reference.error().message;
         test::AccuracySettings settings;
         settings.max_pixels = 1500;
@@ -464,10 +463,7 @@ void check_extension_against_truth(const ExtensionCase& e) {
             {"default shading", &env_frame->hdr, e.default_bound[model == BrdfModel::gltf ? 0 : 1]}};
         Result<RenderedImages> reference = Error{"not rendered"};
         if (model == BrdfModel::gltf) {
-            ReferenceSettings rs;
-            rs.min_samples = rs.max_samples = 256;
-            rs.noise_target = 0;
-            reference = (*env_session)->render_reference(rs);
+            reference = (*env_session)->render_reference(fixed_256_samples());
             ASSERT_TRUE(reference) << reference.error().message;
             measured.push_back({"reference 256 spp", &reference->hdr, e.reference_bound});
         }

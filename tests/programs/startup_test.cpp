@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include <facet/io/image_io.h>
 #include "support/output_files.h"
 #include "support/process.h"
 
@@ -23,9 +24,10 @@ using namespace facet::test;
 const std::string clean_env = "env -u FACET_SHADER_CACHE -u FACET_SHADER_DIR FACET_LOG=debug ";
 
 // A small render: a few seconds on lavapipe, every pass of the bake and the frame.
-std::string render(const fs::path& xdg, const fs::path& out, const std::string& flags = "") {
-    return clean_env + "XDG_CACHE_HOME=" + xdg.string() + " " + FACET_RENDER_PATH +
-           " --model builtin:sphere --env builtin:sky --no-bake-cache --width 32 --height 24 --env-width 64"
+std::string render(const fs::path& xdg, const fs::path& out, const std::string& flags = "",
+                   const std::string& env = "builtin:sky") {
+    return clean_env + "XDG_CACHE_HOME=" + xdg.string() + " " + FACET_RENDER_PATH + " --model builtin:sphere --env " +
+           env + " --no-bake-cache --width 32 --height 24 --env-width 64"
            " --ibl-samples 64 --out " + out.string() + " " + flags;
 }
 
@@ -170,7 +172,9 @@ TEST(ShaderCache, ProcessesSharingOneCacheAtOnce) {
 }
 
 // The dynamic linker's own record (LD_DEBUG=files names every library it loads): a start
-// that writes no image loads no OpenImageIO; writing one loads the module, and it.
+// that writes no image loads no OpenImageIO, and neither does writing a PNG (Facet's own
+// encoder); reading an image other than a Radiance .hdr (an .exr environment) loads the
+// module, and it.
 TEST(ImageModule, OpenImageIOIsLoadedOnlyForImages) {
     TempDir dir("image_module_loading");
     Ran help = run_command("LD_DEBUG=files " + std::string(FACET_RENDER_PATH) + " --help");
@@ -179,11 +183,19 @@ TEST(ImageModule, OpenImageIOIsLoadedOnlyForImages) {
     EXPECT_EQ(help.output.find("libOpenImageIO"), std::string::npos) << help.output;
     EXPECT_EQ(help.output.find("libfacet_image_io"), std::string::npos) << help.output;
 
+    auto tail = [](const std::string& text) { return text.substr(text.size() - std::min<size_t>(text.size(), 4000)); };
     Ran wrote = run_command("LD_DEBUG=files " + render(dir / "xdg", dir / "a.png"));
-    ASSERT_EQ(wrote.status, 0) << wrote.output.substr(wrote.output.size() - std::min<size_t>(wrote.output.size(), 4000));
-    EXPECT_NE(wrote.output.find("file=libfacet_image_io.so"), std::string::npos);
-    EXPECT_NE(wrote.output.find("file=libOpenImageIO.so"), std::string::npos);
+    ASSERT_EQ(wrote.status, 0) << tail(wrote.output);
     EXPECT_TRUE(fs::exists(dir / "a.png"));
+    EXPECT_EQ(wrote.output.find("libfacet_image_io"), std::string::npos);
+    EXPECT_EQ(wrote.output.find("libOpenImageIO"), std::string::npos);
+
+    const std::vector<float> sky(64 * 32 * 4, 0.5f);
+    ASSERT_TRUE(facet::write_hdr_image((dir / "sky.exr").string(), 64, 32, sky));
+    Ran read = run_command("LD_DEBUG=files " + render(dir / "xdg", dir / "b.png", "", (dir / "sky.exr").string()));
+    ASSERT_EQ(read.status, 0) << tail(read.output);
+    EXPECT_NE(read.output.find("file=libfacet_image_io.so"), std::string::npos);
+    EXPECT_NE(read.output.find("file=libOpenImageIO.so"), std::string::npos);
 }
 
 }  // namespace
