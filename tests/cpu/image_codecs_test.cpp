@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <OpenImageIO/imageio.h>
-#include <unistd.h>
 
 #include <bit>
 #include <cmath>
@@ -20,18 +19,14 @@
 #include <facet/io/environment_image.h>
 #include <facet/io/image_io.h>
 #include "io/image_codecs.h"
+#include "support/output_files.h"
 
 namespace facet {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
-    fs::path path = fs::temp_directory_path() / ("facet_image_codecs_test_" + std::to_string(::getpid()));
-    TempDir() { fs::create_directories(path); }
-    ~TempDir() { fs::remove_all(path); }
-    std::string file(const std::string& name) const { return (path / name).string(); }
-};
+using test::TempDir;
 
 struct Size {
     uint32_t width, height;
@@ -96,7 +91,7 @@ float rgbe_value(uint8_t m, uint8_t e) { return e == 0 ? 0.0f : std::ldexp(float
 const Size kSizes[] = {{1, 1}, {7, 3}, {1023, 17}, {5, 16}, {3, 32}, {9, 33}, {64, 40}};
 
 TEST(ImageCodecs, PngDecodesToExactlyTheInput) {
-    TempDir dir;
+    TempDir dir("image_codecs_test");
     std::mt19937 random(1);
     for (Size s : kSizes) {
         std::vector<uint8_t> rgba(size_t(s.width) * s.height * 4);
@@ -113,7 +108,7 @@ TEST(ImageCodecs, PngDecodesToExactlyTheInput) {
 
 // Formats other than PNG are written through the image module, as the extension says.
 TEST(ImageCodecs, OtherLdrFormatsGoThroughTheModule) {
-    TempDir dir;
+    TempDir dir("image_codecs_test");
     std::vector<uint8_t> rgba(7 * 3 * 4);
     for (size_t i = 0; i < rgba.size(); ++i) rgba[i] = uint8_t(i * 11);
     ASSERT_TRUE(write_ldr_image(dir.file("a.tif"), 7, 3, rgba));
@@ -149,7 +144,7 @@ std::vector<int32_t> exr_chunk_sizes(const std::string& bytes, uint32_t height) 
 }
 
 TEST(ImageCodecs, ExrDecodesToEveryBitOfTheInput) {
-    TempDir dir;
+    TempDir dir("image_codecs_test");
     std::mt19937 random(2);
     const float specials[] = {0.0f, -0.0f, 65504.0f, 65505.0f, 1e5f, 3e38f, 1e-30f, 1e-40f, -2.5f,
                               std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN()};
@@ -187,7 +182,7 @@ TEST(ImageCodecs, ExrDecodesToEveryBitOfTheInput) {
 }
 
 TEST(ImageCodecs, HdrDecodesAsOurReaderAndWithinRgbePrecision) {
-    TempDir dir;
+    TempDir dir("image_codecs_test");
     std::mt19937 random(3);
     std::uniform_real_distribution<float> exponent(-40.0f, 40.0f);
     const Size sizes[] = {{1, 1}, {7, 3}, {8, 2}, {1023, 17}, {32767, 1}, {32768, 1}, {40, 5}};
@@ -246,7 +241,7 @@ TEST(ImageCodecs, ReaderEqualsOpenImageIOOnTheSharedEnvironments) {
 // New-style run-length rows and flat ones, mixed in one file, and files too narrow or
 // too wide for run-length rows.
 TEST(ImageCodecs, ReaderEqualsOpenImageIOOnFlatAndRunLengthRows) {
-    TempDir dir;
+    TempDir dir("image_codecs_test");
     std::mt19937 random(4);
     auto byte = [&](int low, int high) { return char(std::uniform_int_distribution<int>(low, high)(random)); };
     // A flat texel that is neither a run-length row's start (2, 2) nor an old-style repeat (1, 1, 1).
@@ -294,7 +289,7 @@ TEST(ImageCodecs, ReaderEqualsOpenImageIOOnFlatAndRunLengthRows) {
 // markers as texels, so it is no reference here): 1, 1, 1, n repeats the texel before
 // n times, each further marker in a row of them shifting its count by 8 more bits.
 TEST(ImageCodecs, OldStyleRunsRepeatTheTexelBefore) {
-    TempDir dir;
+    TempDir dir("image_codecs_test");
     const std::string a = {char(128), 64, 32, char(129)}, b = {10, 20, char(200), char(120)};
     const std::string row = a + std::string{1, 1, 1, 2} + std::string{1, 1, 1, 1} + b + std::string{1, 1, 1, 40};
     write_bytes(dir.file("old.hdr"), rgbe_header(300, 2) + row + row);
@@ -310,7 +305,7 @@ TEST(ImageCodecs, OldStyleRunsRepeatTheTexelBefore) {
 }
 
 TEST(ImageCodecs, DamagedFilesAreErrorsSayingWhere) {
-    TempDir dir;
+    TempDir dir("image_codecs_test");
     auto error_of = [&](const std::string& bytes) {
         write_bytes(dir.file("bad.hdr"), bytes);
         auto read = our_read(dir.file("bad.hdr"));
@@ -365,7 +360,7 @@ TEST(ImageCodecs, DamagedFilesAreErrorsSayingWhere) {
 // Files this reader does not take are declined (load_environment gives them to the image
 // module, which reads them as before).
 TEST(ImageCodecs, ReaderDeclinesWhatItDoesNotTake) {
-    TempDir dir;
+    TempDir dir("image_codecs_test");
     const std::string texels(4 * 2 * 4, char(100));
     const std::string declined[] = {
         "this is not an image\n",
@@ -399,7 +394,7 @@ bool image_module_loaded() {
 // Run in a process of its own (gtest's "threadsafe" death tests start the test anew), so
 // that nothing else in this executable loaded the module first: 0 when it stayed unloaded.
 int load_hdr_and_write_every_format() {
-    TempDir dir;
+    TempDir dir("image_codecs_test");
     auto env = load_environment(std::string(FACET_SHARED_DATA_DIR) + "/env/royal_esplanade_1k.hdr", {false, 512});
     if (!env) return 2;
     write_bytes(dir.file("huge.hdr"), rgbe_header(200000, 100000));
@@ -415,7 +410,7 @@ int load_hdr_and_write_every_format() {
 
 // The control: 7 when reading an EXR (through the module) shows the module loaded.
 int load_exr() {
-    TempDir dir;
+    TempDir dir("image_codecs_test");
     const std::vector<float> rgba(8 * 4, 1.0f);
     const bool read = write_hdr_image(dir.file("e.exr"), 4, 2, rgba) && load_environment(dir.file("e.exr"));
     return read && image_module_loaded() ? 7 : 0;

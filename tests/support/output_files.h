@@ -121,6 +121,7 @@ struct TempDir {
     }
     ~TempDir() { fs::remove_all(path); }
     fs::path operator/(const std::string& name) const { return path / name; }
+    std::string file(const std::string& name) const { return (path / name).string(); }
 };
 
 }  // namespace facet::test
