@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <future>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -58,6 +60,14 @@ bool up_to_date(const std::string& dir, const std::string& key) {
 }
 
 int bake(const Options& o) {
+    // Vulkan starts on a second thread (the loader's drivers, LLVM and the device: ~0.1 s
+    // on lavapipe) while this one reads the input and encodes the environment's float
+    // files. A bake that runs whatever the input holds (--force, or no bake in DIR to
+    // compare with) starts it first thing; an up-to-date check reads the input first and,
+    // when the bake is up to date, needs no device at all.
+    std::future<std::unique_ptr<Context>> starting;
+    auto start = [&] { starting = std::async(std::launch::async, [&] { return start_vulkan(o.device, o.validation); }); };
+    if (o.force || !fs::exists(fs::path(o.out_dir) / "bake.json")) start();
     auto source = resolve_environment(o.env, o.sky_width, {o.sanitize, o.max_env_width});
     if (!source) throw std::runtime_error(source.error().message);
     if (source->source_width != source->width)
@@ -76,7 +86,14 @@ int bake(const Options& o) {
                      o.out_dir.c_str());
         return 0;
     }
-    const std::unique_ptr<Context> vulkan = start_vulkan(o.device, o.validation);
+    if (!starting.valid()) start();
+    // A file's environment.exr and .hdr (the bake's own texels unless lights are taken out).
+    if (!source->sky && !o.extract_lights) {
+        auto encoded = encode_environment_files(*source);
+        if (!encoded) throw std::runtime_error(encoded.error().message);
+        requested.encoded_environment = std::make_shared<const EncodedEnvironmentFiles>(std::move(*encoded));
+    }
+    const std::unique_ptr<Context> vulkan = starting.get();
     Context& context = *vulkan;
     // Sizes the device cannot hold fail before anything is created or written.
     if (Status fits = check_ibl_fits(context, *source, resolved.ibl, resolved.extract_lights); !fits)

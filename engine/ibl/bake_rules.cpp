@@ -21,10 +21,18 @@ uint32_t light_split_level(std::span<const DiskLight> lights, uint32_t /*specula
 }
 
 std::vector<std::string> bake_warnings(const EnvironmentSource& analysed, const IblSettings& resolved) {
+    const bool content = method_warnings_read_content(resolved);
+    if (analysed.sky && !content) {
+        // All the warnings read is the size and whether there is any light at all, which
+        // a sky's parameters say without rendering it.
+        EnvironmentStats stats;
+        stats.width = analysed.width;
+        stats.height = analysed.height;
+        stats.black = analysed.sky->black();
+        return method_warnings(stats, resolved);
+    }
     if (analysed.sky || analysed.image.rgba.empty()) return {};
-    return method_warnings(environment_stats(analysed.image.rgba, analysed.width, analysed.height,
-                                             method_warnings_read_content(resolved)),
-                           resolved);
+    return method_warnings(environment_stats(analysed.image.rgba, analysed.width, analysed.height, content), resolved);
 }
 
 // What a bake makes of the same input and settings: bumped with every change to the

@@ -9,12 +9,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <new>
 
 #include <facet/gpu/context.h>
 #include <facet/gpu/transfer.h>
 #include <facet/graph/compiled_graph.h>
 #include <facet/ibl/bake_rules.h>
+#include <facet/ibl/method_domain.h>
 #include <facet/render/tonemap_preview.h>
 #include <facet/shader/program_cache.h>
 #include "ibl/bake_cancel.h"
@@ -180,10 +182,11 @@ Result<BakedEnvironment> bake(Context& context, ProgramCache& programs, const En
     meta.max_env_width = input.max_width;
     meta.preview_exposure = settings.preview_exposure;
 
-    // A procedural sky is rendered into texels for the analyses (warnings, budget, lights);
+    // A procedural sky is rendered into texels for the analyses that read them (light
+    // extraction, the budget, the warnings of methods whose domain depends on the content);
     // the bake itself still renders it in its own graph.
     std::optional<EnvironmentSource> materialized;
-    if (input.sky) {
+    if (input.sky && (settings.extract_lights || settings.target_error > 0 || method_warnings_read_content(settings.ibl))) {
         materialized = input;
         if (Status st = materialize_environment(context, programs, *materialized); !st) return st.error();
     }
@@ -210,6 +213,11 @@ Result<BakedEnvironment> bake(Context& context, ProgramCache& programs, const En
         }
     }
     const EnvironmentSource& baked_source = residual ? *residual : input;
+    // The caller's encoded environment files, kept when they are of the texels baked.
+    if (const auto& encoded = settings.encoded_environment;
+        encoded && !residual && !input.sky && encoded->content_hash == input.content_hash &&
+        encoded->width == input.width && encoded->height == input.height)
+        A::encoded(out) = encoded;
 
     if (settings.target_error > 0) {
         auto budget = choose_within_budget(context, programs, residual ? *residual : analysed, settings.ibl,

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <future>
 
 #include <facet/gpu/transfer.h>
@@ -205,24 +206,37 @@ Status BakedEnvironment::stage(OutputSet& outputs, const std::string& dir, const
         if (notes) notes->push_back("removing " + path(name) + " (" + why + ")");
         outputs.remove_with_commit(path(name));
     };
-    const Levels env_levels = read_levels(context, environment_, kBakedLayout);
-    const ImageDesc& e = environment_.desc();
-    std::vector<float> env(env_levels[0].size() / sizeof(float));
-    std::memcpy(env.data(), env_levels[0].data(), env.size() * sizeof(float));
-    // The environment's float files (EXR, and the RGBE preview) are encoded on a second
-    // thread while this one writes the rest: the EXR's compression is most of the save.
-    // Staging (the OutputSet) and GPU reads stay on this thread; every return below
-    // waits for the second one (the future's destructor) before the staged files go.
+    const ImageDesc e = environment_.desc();
     const char* no_previews = "previews are not written here";
+    // Files that need no more of the device are encoded and written on second threads
+    // while this one reads the cubes back and writes them (the EXR's compression is most
+    // of a save). Staging (the OutputSet) and GPU reads stay on this thread; every return
+    // below waits for the others (the futures' destructors) before the staged files go.
+    std::vector<std::future<Status>> writing;
+    auto in_background = [&](std::function<Status()> work) {
+        writing.push_back(std::async(std::launch::async, std::move(work)));
+    };
     const std::string exr_path = staged("environment.exr");
     std::string hdr_path;
     if (!options.previews) remove_old("environment.hdr", no_previews);
     else hdr_path = staged("environment.hdr");
-    std::future<Status> env_files = std::async(std::launch::async, [&]() -> Status {
-        if (Status s = write_hdr_image(exr_path, e.width, e.height, env); !s) return s;
-        if (!hdr_path.empty()) return write_hdr_image(hdr_path, e.width, e.height, env);
-        return Ok{};
-    });
+    if (encoded_ && encoded_->previews == options.previews) {
+        // Encoded ahead (BakeSettings::encoded_environment): only the bytes to write.
+        in_background([exr_path, hdr_path, encoded = encoded_]() -> Status {
+            if (Status s = write_binary_file(exr_path, encoded->exr); !s) return s;
+            if (!hdr_path.empty()) return write_binary_file(hdr_path, encoded->hdr);
+            return Ok{};
+        });
+    } else {
+        const Levels env_levels = read_levels(context, environment_, kBakedLayout);
+        std::vector<float> env(env_levels[0].size() / sizeof(float));
+        std::memcpy(env.data(), env_levels[0].data(), env.size() * sizeof(float));
+        in_background([exr_path, hdr_path, e, env = std::move(env)]() -> Status {
+            if (Status s = write_hdr_image(exr_path, e.width, e.height, env); !s) return s;
+            if (!hdr_path.empty()) return write_hdr_image(hdr_path, e.width, e.height, env);
+            return Ok{};
+        });
+    }
     if (!options.previews) {
         remove_old("environment.png", no_previews);
     } else if (preview_) {
@@ -230,7 +244,9 @@ Status BakedEnvironment::stage(OutputSet& outputs, const std::string& dir, const
         if (!bytes) return bytes.error();
         std::vector<uint8_t> rgba8(bytes->size());
         std::memcpy(rgba8.data(), bytes->data(), bytes->size());
-        if (Status s = write_ldr_image(staged("environment.png"), e.width, e.height, rgba8); !s) return s;
+        in_background([png_path = staged("environment.png"), e, rgba8 = std::move(rgba8)] {
+            return write_ldr_image(png_path, e.width, e.height, rgba8);
+        });
     }
     auto ktx2 = [&](const char* name, const Image* image, const char* why_absent) -> Status {
         if (!image) {
@@ -269,13 +285,34 @@ Status BakedEnvironment::stage(OutputSet& outputs, const std::string& dir, const
     }
     if (sh9_.empty()) remove_old("sh9.json", "this bake does not use spherical harmonics");
     else if (Status s = write_text_file(staged("sh9.json"), sh9_json(sh9_)); !s) return s;
-    if (Status s = env_files.get(); !s) return s;
+    for (std::future<Status>& w : writing)
+        if (Status s = w.get(); !s) return s;
     // bake.json last: the set's marker, its presence with a bake key marks a complete bake.
     return write_text_file(staged("bake.json"), bake_json(*this));
 } catch (const BakeCancelled&) {
     return Error{kBakeCancelled};
 } catch (const VulkanError& error) {
     return Error{dir + ": reading the baked images back: " + error.what(), error.result()};
+}
+
+Result<EncodedEnvironmentFiles> encode_environment_files(const EnvironmentSource& source,
+                                                         const BakeSaveOptions& options) {
+    if (source.sky || source.image.rgba.empty())
+        return Error{source.name + ": a built-in environment's texels are made on the device; nothing to encode ahead"};
+    EncodedEnvironmentFiles files;
+    files.content_hash = source.content_hash;
+    files.width = source.width;
+    files.height = source.height;
+    files.previews = options.previews;
+    auto exr = encode_hdr_image("environment.exr", source.width, source.height, source.image.rgba);
+    if (!exr) return exr.error();
+    files.exr = std::move(*exr);
+    if (options.previews) {
+        auto hdr = encode_hdr_image("environment.hdr", source.width, source.height, source.image.rgba);
+        if (!hdr) return hdr.error();
+        files.hdr = std::move(*hdr);
+    }
+    return files;
 }
 
 Status BakedEnvironment::save(const std::string& dir, const BakeSaveOptions& options) const {

@@ -2,6 +2,7 @@
 // What bake_environment, save() and load() share: building a BakedEnvironment's images
 // from texels, reading them back and the names of formats.
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,7 @@ struct BakedEnvironmentAccess {
     static std::vector<float>& sh9(BakedEnvironment& b) { return b.sh9_; }
     static std::vector<DiskLight>& lights(BakedEnvironment& b) { return b.lights_; }
     static Image& preview(BakedEnvironment& b) { return b.preview_; }
+    static std::shared_ptr<const EncodedEnvironmentFiles>& encoded(BakedEnvironment& b) { return b.encoded_; }
     static BakeMetadata& metadata(BakedEnvironment& b) { return b.metadata_; }
 };
 

@@ -37,6 +37,12 @@ std::array<float, 3> ProceduralSky::sun_direction() const {
     return {float(d.x), float(d.y), float(d.z)};
 }
 
+bool ProceduralSky::black() const {
+    for (const auto& rgb : {sun_radiance, zenith_radiance, horizon_radiance, ground_radiance})
+        if (luminance(rgb[0], rgb[1], rgb[2]) > 0) return false;
+    return true;
+}
+
 std::string ProceduralSky::content_hash() const {
     Hash64 h;
     h.add("facet procedural sky v1");

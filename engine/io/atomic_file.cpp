@@ -51,15 +51,19 @@ Status write_atomically(const std::string& path, const std::function<Status(cons
     return Ok{};
 }
 
-Status write_text_file(const std::string& path, const std::string& text) {
+Status write_binary_file(const std::string& path, std::span<const uint8_t> bytes) {
     return write_atomically(path, [&](const std::string& temp) -> Status {
         std::ofstream out(temp, std::ios::binary);
         if (!out) return Error{path + ": cannot open for writing: " + std::error_code(errno, std::generic_category()).message()};
-        out << text;
+        out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
         out.close();
         if (!out) return Error{path + ": write failed (disk full?)"};
         return Ok{};
     });
+}
+
+Status write_text_file(const std::string& path, const std::string& text) {
+    return write_binary_file(path, {reinterpret_cast<const uint8_t*>(text.data()), text.size()});
 }
 
 Status ensure_directory(const std::string& dir) {

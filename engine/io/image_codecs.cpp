@@ -6,6 +6,7 @@
 #include <bit>
 #include <cerrno>
 #include <cmath>
+#include <climits>
 #include <cstring>
 #include <string_view>
 #include <utility>
@@ -19,7 +20,7 @@ namespace {
 
 Status write_failed() { return Error{std::string("write failed: ") + std::strerror(errno)}; }
 
-bool put_bytes(std::FILE* out, const void* bytes, size_t size) { return std::fwrite(bytes, 1, size, out) == size; }
+bool put_bytes(ByteSink& out, const void* bytes, size_t size) { return out.put(bytes, size); }
 
 void store_be32(uint8_t* out, uint32_t v) {
     for (int i = 0; i < 4; ++i) out[i] = uint8_t(v >> (24 - 8 * i));
@@ -32,10 +33,30 @@ void append_le(std::vector<uint8_t>& out, T v) {
     std::memcpy(&out[at], &v, sizeof(T));
 }
 
+}  // namespace
+
+bool ByteSink::put(const void* bytes, size_t size) {
+    if (file_) return std::fwrite(bytes, 1, size, file_) == size;
+    const auto* from = static_cast<const uint8_t*>(bytes);
+    memory_->insert(memory_->end(), from, from + size);
+    return true;
+}
+
+bool ByteSink::patch(uint64_t offset, const void* bytes, size_t size) {
+    if (file_)
+        return offset <= uint64_t(LONG_MAX) && std::fseek(file_, long(offset), SEEK_SET) == 0 &&
+               std::fwrite(bytes, 1, size, file_) == size && std::fseek(file_, 0, SEEK_END) == 0;
+    if (offset > memory_->size() || size > memory_->size() - offset) return false;
+    std::memcpy(memory_->data() + offset, bytes, size);
+    return true;
+}
+
+namespace {
+
 // ---- PNG ----
 
 // A chunk: length, type, data, and the CRC-32 of type and data.
-bool put_png_chunk(std::FILE* out, const char* type, const uint8_t* data, size_t size) {
+bool put_png_chunk(ByteSink& out, const char* type, const uint8_t* data, size_t size) {
     uint8_t head[8], tail[4];
     store_be32(head, uint32_t(size));
     std::memcpy(head + 4, type, 4);
@@ -56,7 +77,7 @@ struct DeflateStream {
 
 }  // namespace
 
-Status write_png(std::FILE* out, uint32_t width, uint32_t height, const uint8_t* rgba) {
+Status write_png(ByteSink& out, uint32_t width, uint32_t height, const uint8_t* rgba) {
     if (width == 0 || height == 0 || width > INT32_MAX || height > INT32_MAX || width > (UINT32_MAX - 1) / 4)
         return Error{std::to_string(width) + "x" + std::to_string(height) + " is not a size a PNG can hold"};
     static const uint8_t signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
@@ -175,7 +196,7 @@ void exr_zip_predict(const std::vector<uint8_t>& raw, std::vector<uint8_t>& out)
 
 }  // namespace
 
-Status write_exr(std::FILE* out, uint32_t width, uint32_t height, const float* rgba) {
+Status write_exr(ByteSink& out, uint32_t width, uint32_t height, const float* rgba) {
     // A chunk's byte count is an int32.
     if (width == 0 || height == 0 || height > INT32_MAX || uint64_t(width) * kExrZipRows * 16 > INT32_MAX)
         return Error{std::to_string(width) + "x" + std::to_string(height) + " is not a size this EXR writer takes"};
@@ -213,8 +234,7 @@ Status write_exr(std::FILE* out, uint32_t width, uint32_t height, const float* r
         if (!put_bytes(out, chunk.data(), chunk.size()) || !put_bytes(out, data, size)) return write_failed();
         at += chunk.size() + size;
     }
-    if (std::fseek(out, long(header.size()), SEEK_SET) != 0 || !put_bytes(out, offsets.data(), offsets.size() * 8))
-        return write_failed();
+    if (!out.patch(header.size(), offsets.data(), offsets.size() * 8)) return write_failed();
     return Ok{};
 }
 
@@ -263,7 +283,7 @@ void append_rle(const uint8_t* bytes, size_t n, std::vector<uint8_t>& out) {
 
 }  // namespace
 
-Status write_rgbe(std::FILE* out, uint32_t width, uint32_t height, const float* rgba) {
+Status write_rgbe(ByteSink& out, uint32_t width, uint32_t height, const float* rgba) {
     const std::string header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " + std::to_string(height) + " +X " +
                                std::to_string(width) + "\n";
     if (!put_bytes(out, header.data(), header.size())) return write_failed();

@@ -16,27 +16,42 @@
 
 namespace facet::codec {
 
+// Where an encoder's bytes go: an open file, or memory (a file's bytes made ahead of
+// writing it, e.g. on another thread). patch() rewrites bytes already put, then puts go on
+// at the end (the EXR offset table). A false return is a failed write (errno says why).
+class ByteSink {
+public:
+    explicit ByteSink(std::FILE* file) : file_(file) {}
+    explicit ByteSink(std::vector<uint8_t>& memory) : memory_(&memory) {}
+    bool put(const void* bytes, size_t size);
+    bool patch(uint64_t offset, const void* bytes, size_t size);
+
+private:
+    std::FILE* file_ = nullptr;
+    std::vector<uint8_t>* memory_ = nullptr;
+};
+
 // PNG (W3C, "Portable Network Graphics Specification", 2nd ed.): 8-bit RGBA with
 // straight alpha (colour type 6), rows top first, each row filtered with Sub (filter
 // type 1), deflated at zlib level 1.
-Status write_png(std::FILE* out, uint32_t width, uint32_t height, const uint8_t* rgba);
+Status write_png(ByteSink& out, uint32_t width, uint32_t height, const uint8_t* rgba);
 
 // OpenEXR ("OpenEXR File Layout"): one part of scanlines, channels A, B, G, R as 32-bit
 // float (every bit of the input kept), ZIP_COMPRESSION (16 rows a chunk), increasing y.
 // No date or other varying attribute: the same texels make the same bytes. `out` must be
-// seekable (the offset table is written last).
+// a seekable file or memory (the offset table is written last).
 // zlib level 1: builtin:sky's 1024x512 environment in 25 ms and 551 KB, royal_esplanade_1k's
 // in 66 ms and 2.33 MB; at level 4, OpenEXR's own (the sizes OpenImageIO's files had),
 // 36 ms and 523 KB, 87 ms and 2.18 MB.
 constexpr int kExrZipLevel = 1;
-Status write_exr(std::FILE* out, uint32_t width, uint32_t height, const float* rgba);
+Status write_exr(ByteSink& out, uint32_t width, uint32_t height, const float* rgba);
 
 // Radiance RGBE (Ward, "Real Pixels", Graphics Gems II, 1991): RGB of the RGBA input
 // (alpha dropped), header "#?RADIANCE", FORMAT=32-bit_rle_rgbe, "-Y H +X W", rows
 // run-length encoded per component when 8 <= width <= 32767 (flat otherwise).
 // Channels that are negative or NaN are written as 0, values above the largest RGBE
 // (255 * 2^119) as it.
-Status write_rgbe(std::FILE* out, uint32_t width, uint32_t height, const float* rgba);
+Status write_rgbe(ByteSink& out, uint32_t width, uint32_t height, const float* rgba);
 
 // A Radiance file read a row at a time, so memory is one row whatever the file's size.
 class RgbeReader {

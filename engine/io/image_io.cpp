@@ -30,10 +30,11 @@ Status check_image_buffer(const std::string& path, uint32_t width, uint32_t heig
 
 // Opens `temp` and has `encode` write it; messages name `path`, the file's final name.
 Status encode_image_file(const std::string& path, const std::string& temp,
-                         const std::function<Status(std::FILE*)>& encode) {
+                         const std::function<Status(codec::ByteSink&)>& encode) {
     std::FILE* file = std::fopen(temp.c_str(), "wb");
     if (!file) return Error{path + ": cannot open for writing: " + std::strerror(errno)};
-    Status written = encode(file);
+    codec::ByteSink sink(file);
+    Status written = encode(sink);
     const bool closed = std::fclose(file) == 0;  // the last buffered bytes are written here
     if (!written) return Error{path + ": " + written.error().message};
     if (!closed) return Error{path + ": write failed: " + std::strerror(errno)};
@@ -58,24 +59,44 @@ Status write_through_module(const std::string& path, const std::string& temp, ui
 
 void preload_image_io() { (void)image_module(); }
 
-Status write_hdr_image(const std::string& path, uint32_t width, uint32_t height, std::span<const float> rgba) {
-    if (Status s = check_image_buffer(path, width, height, rgba.size()); !s) return s;
+namespace {
+
+// The encoder of `path`'s extension (.exr or .hdr) for RGBA float texels.
+Result<std::function<Status(codec::ByteSink&)>> hdr_encoder(const std::string& path, uint32_t width, uint32_t height,
+                                                             std::span<const float> rgba) {
+    if (Status s = check_image_buffer(path, width, height, rgba.size()); !s) return s.error();
     const std::string ext = lower_extension(path);
-    if (ext != ".exr" && ext != ".hdr")
-        return Error{path + ": HDR output must be .exr or .hdr"};
-    return write_atomically(path, [&](const std::string& temp) {
-        return encode_image_file(path, temp, [&](std::FILE* out) {
-            return ext == ".exr" ? codec::write_exr(out, width, height, rgba.data())
-                                 : codec::write_rgbe(out, width, height, rgba.data());
-        });
+    if (ext != ".exr" && ext != ".hdr") return Error{path + ": HDR output must be .exr or .hdr"};
+    return std::function<Status(codec::ByteSink&)>([=](codec::ByteSink& out) {
+        return ext == ".exr" ? codec::write_exr(out, width, height, rgba.data())
+                             : codec::write_rgbe(out, width, height, rgba.data());
     });
+}
+
+}  // namespace
+
+Status write_hdr_image(const std::string& path, uint32_t width, uint32_t height, std::span<const float> rgba) {
+    auto encoder = hdr_encoder(path, width, height, rgba);
+    if (!encoder) return encoder.error();
+    return write_atomically(path, [&](const std::string& temp) { return encode_image_file(path, temp, *encoder); });
+}
+
+Result<std::vector<uint8_t>> encode_hdr_image(const std::string& path, uint32_t width, uint32_t height,
+                                              std::span<const float> rgba) {
+    auto encoder = hdr_encoder(path, width, height, rgba);
+    if (!encoder) return encoder.error();
+    std::vector<uint8_t> bytes;
+    codec::ByteSink sink(bytes);
+    if (Status s = (*encoder)(sink); !s) return Error{path + ": " + s.error().message};
+    return bytes;
 }
 
 Status write_ldr_image(const std::string& path, uint32_t width, uint32_t height, std::span<const uint8_t> rgba) {
     if (Status s = check_image_buffer(path, width, height, rgba.size()); !s) return s;
     return write_atomically(path, [&](const std::string& temp) {
         if (lower_extension(path) != ".png") return write_through_module(path, temp, width, height, rgba.data());
-        return encode_image_file(path, temp, [&](std::FILE* out) { return codec::write_png(out, width, height, rgba.data()); });
+        return encode_image_file(path, temp,
+                                 [&](codec::ByteSink& out) { return codec::write_png(out, width, height, rgba.data()); });
     });
 }
 

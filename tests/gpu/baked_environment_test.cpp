@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 #include <facet/render/specular_lobes.h>
@@ -15,6 +16,8 @@
 #include <facet/graph/graph_run.h>
 #include <facet/ibl/bake_rules.h>
 #include <facet/ibl/baked_environment.h>
+#include <facet/ibl/method_domain.h>
+#include <facet/ibl/procedural_sky.h>
 #include <facet/reference/ibl_reference.h>
 #include <facet/shader/program_cache.h>
 #include "io/json_reader.h"
@@ -384,6 +387,129 @@ TEST_F(BakedEnvironmentTest, PassesWriteIntoTheCallersImages) {
     ASSERT_FALSE(refused);
     EXPECT_NE(refused.error().message.find("the caller's brdf lut image is 8x8"), std::string::npos)
         << refused.error().message;
+}
+
+// environment.exr and .hdr encoded ahead (BakeSettings::encoded_environment, what
+// facet-bake does while the device starts) are the bytes save() would have encoded from
+// the baked environment; the bake keeps them only when they are of the texels it bakes.
+TEST_F(BakedEnvironmentTest, EnvironmentFilesEncodedAheadAreWrittenOnlyForTheirOwnTexels) {
+    const EnvironmentSource source = sun_source(64, 50.0);
+    auto encoded = encode_environment_files(source);
+    ASSERT_TRUE(encoded) << encoded.error().message;
+    EXPECT_TRUE(encoded->previews);
+    EXPECT_FALSE(encoded->exr.empty());
+    EXPECT_FALSE(encoded->hdr.empty());
+    auto plain = bake(source, small_settings());
+    ASSERT_TRUE(plain) << plain.error().message;
+    test::TempDir reference("encoded_ahead_reference");
+    ASSERT_TRUE(plain->save(reference.path.string()));
+    // The bytes encoded ahead are those save() encodes from the texels read back.
+    EXPECT_EQ(read_text(reference / "environment.exr"), std::string(encoded->exr.begin(), encoded->exr.end()));
+    EXPECT_EQ(read_text(reference / "environment.hdr"), std::string(encoded->hdr.begin(), encoded->hdr.end()));
+
+    // Marked bytes show which files were written from what was encoded ahead.
+    auto marked = [&](const EncodedEnvironmentFiles& from, const std::string& content_hash) {
+        auto files = std::make_shared<EncodedEnvironmentFiles>(from);
+        files->content_hash = content_hash;
+        files->exr.assign(10, uint8_t('E'));
+        files->hdr.assign(10, uint8_t('H'));
+        return files;
+    };
+    auto save_with = [&](std::shared_ptr<const EncodedEnvironmentFiles> files, const char* name,
+                         const BakeSaveOptions& options = {}) {
+        BakeSettings settings = small_settings();
+        settings.encoded_environment = std::move(files);
+        auto baked = bake(source, settings);
+        EXPECT_TRUE(baked) << baked.error().message;
+        auto dir = std::make_unique<test::TempDir>(name);
+        if (baked) EXPECT_TRUE(baked->save(dir->path.string(), options));
+        return dir;
+    };
+    {
+        auto dir = save_with(marked(*encoded, source.content_hash), "encoded_ahead_used");
+        EXPECT_EQ(read_text(*dir / "environment.exr"), std::string(10, 'E'));
+        EXPECT_EQ(read_text(*dir / "environment.hdr"), std::string(10, 'H'));
+        for (const char* name : {"specular.ktx2", "irradiance.ktx2", "environment.ktx2", "environment.png"})
+            EXPECT_EQ(read_text(*dir / name), read_text(reference / name)) << name;
+    }
+    {
+        // Of other texels: ignored, the environment is read back and encoded as before.
+        auto dir = save_with(marked(*encoded, "another input"), "encoded_ahead_other");
+        EXPECT_EQ(read_text(*dir / "environment.exr"), read_text(reference / "environment.exr"));
+        EXPECT_EQ(read_text(*dir / "environment.hdr"), read_text(reference / "environment.hdr"));
+    }
+    {
+        // Encoded with previews, saved without: the EXR is encoded again, no .hdr written.
+        auto dir = save_with(marked(*encoded, source.content_hash), "encoded_ahead_no_previews", BakeSaveOptions{false});
+        EXPECT_EQ(read_text(*dir / "environment.exr"), read_text(reference / "environment.exr"));
+        EXPECT_FALSE(fs::exists(*dir / "environment.hdr"));
+    }
+    {
+        // With extracted lights the bake's environment is the residual: ignored too.
+        const EnvironmentSource lit = sun_source(256, 1e4, 3.0);
+        auto lit_encoded = encode_environment_files(lit);
+        ASSERT_TRUE(lit_encoded) << lit_encoded.error().message;
+        BakeSettings settings = small_settings();
+        settings.extract_lights = true;
+        auto residual = bake(lit, settings);
+        ASSERT_TRUE(residual) << residual.error().message;
+        ASSERT_EQ(residual->lights().size(), 1u) << "the sun is extracted";
+        test::TempDir residual_reference("encoded_ahead_residual_reference");
+        ASSERT_TRUE(residual->save(residual_reference.path.string()));
+        settings.encoded_environment = marked(*lit_encoded, lit.content_hash);
+        auto with = bake(lit, settings);
+        ASSERT_TRUE(with) << with.error().message;
+        test::TempDir dir("encoded_ahead_residual");
+        ASSERT_TRUE(with->save(dir.path.string()));
+        EXPECT_EQ(read_text(dir / "environment.exr"), read_text(residual_reference / "environment.exr"));
+    }
+    EnvironmentSource sky;
+    sky.name = "builtin:sky";
+    sky.sky = ProceduralSky{};
+    auto none = encode_environment_files(sky);
+    ASSERT_FALSE(none);
+    EXPECT_NE(none.error().message.find("builtin:sky"), std::string::npos) << none.error().message;
+}
+
+// A procedural sky is rendered into texels for the warnings only where a method's domain
+// depends on the content: elsewhere its parameters give the same warnings.
+TEST_F(BakedEnvironmentTest, ASkysWarningsNeedItsTexelsOnlyWhereTheyReadThem) {
+    ProceduralSky black = ProceduralSky{};
+    black.sun_radiance = black.zenith_radiance = black.horizon_radiance = black.ground_radiance = {0.0f, 0.0f, 0.0f};
+    EXPECT_TRUE(black.black());
+    EXPECT_FALSE(ProceduralSky{}.black());
+    EXPECT_FALSE(ProceduralSky::white().black());
+    ShaderCompiler compiler;
+    ProgramCache programs(ctx(), compiler);
+    int lazy = 0;
+    for (const auto& [sky, width] : {std::pair{ProceduralSky{}, 128u}, std::pair{ProceduralSky{}, 16u},
+                                     std::pair{ProceduralSky::white(), 64u}, std::pair{black, 64u}}) {
+        EnvironmentSource source;
+        source.name = "sky";
+        source.sky = sky;
+        source.width = source.source_width = width;
+        source.height = source.source_height = width / 2;
+        EnvironmentSource rendered = source;
+        ASSERT_TRUE(materialize_environment(ctx(), programs, rendered));
+        for (IrradianceMethod i : {IrradianceMethod::convolve, IrradianceMethod::riemann, IrradianceMethod::sh9,
+                                   IrradianceMethod::blur, IrradianceMethod::lowmip})
+            for (SpecularMethod s : {SpecularMethod::automatic, SpecularMethod::importance, SpecularMethod::filtered,
+                                     SpecularMethod::convolve, SpecularMethod::mips, SpecularMethod::hybrid}) {
+                IblSettings settings;
+                settings.irradiance.method = i;
+                settings.specular.method = s;
+                if (method_warnings_read_content(settings)) continue;
+                ++lazy;
+                EXPECT_EQ(bake_warnings(source, settings), bake_warnings(rendered, settings)) << width;
+            }
+    }
+    EXPECT_GT(lazy, 0);
+    // The 16x8 sky warns about its size without being rendered.
+    EnvironmentSource tiny;
+    tiny.sky = ProceduralSky{};
+    tiny.width = 16;
+    tiny.height = 8;
+    EXPECT_FALSE(bake_warnings(tiny, IblSettings{}).empty());
 }
 
 TEST(BakeRules, WhatASceneNeedsAndTheSplitLevel) {

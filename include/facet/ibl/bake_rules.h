@@ -37,8 +37,10 @@ inline float specular_lookup_lod(float roughness_value, uint32_t specular_levels
 }
 
 // One sentence per method used outside its domain (ibl/method_domain.h) for this
-// environment; `analysed` must hold its texels (materialize_environment), else there is
-// nothing to analyse and the list is empty.
+// environment. Methods whose domain depends on the content
+// (method_warnings_read_content) need `analysed`'s texels: a procedural sky must have been
+// rendered into them (materialize_environment), else their list is empty; the rest need
+// only a sky's parameters.
 std::vector<std::string> bake_warnings(const EnvironmentSource& analysed, const IblSettings& resolved);
 
 // Everything that decides the bake's outputs, hashed (16 hex digits): equal keys mean

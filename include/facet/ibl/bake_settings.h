@@ -3,6 +3,7 @@
 // through: progress lines, pass progress, and safe points where the caller may stop it.
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 
 #include <vulkan/vulkan.h>
@@ -13,6 +14,15 @@
 #include <facet/ibl/light_extraction.h>
 
 namespace facet {
+
+struct EncodedEnvironmentFiles;  // ibl/baked_environment.h
+
+// What BakedEnvironment::save writes.
+struct BakeSaveOptions {
+    // environment.png, environment.hdr and brdf_lut.png: for people and other tools;
+    // load() reads none of them (a cache entry leaves them out).
+    bool previews = true;
+};
 
 struct BakeSettings {
     // Methods and sizes (cube_size 0: the input's height / 2); resolved against the
@@ -38,6 +48,12 @@ struct BakeSettings {
     // uploads it instead of computing it; a damaged entry is said, removed and made again.
     // Empty directory: none.
     CacheOptions lut_cache{"", 4ull << 30, false};
+    // environment.exr (and .hdr) already encoded by the caller from the texels it bakes
+    // (encode_environment_files in ibl/baked_environment.h), e.g. while the device started:
+    // the BakedEnvironment keeps them, and saving writes these bytes instead of reading the
+    // environment back and encoding it. Ignored where they are not of the environment as
+    // baked (another input, a built-in sky, the residual of extracted lights).
+    std::shared_ptr<const EncodedEnvironmentFiles> encoded_environment;
 };
 
 // A line of progress (passes, the budget's measurements, ...).

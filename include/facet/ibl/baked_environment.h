@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -66,12 +67,20 @@ struct BakeMetadata {
     uint32_t passes = 0;
 };
 
-// What BakedEnvironment::save writes.
-struct BakeSaveOptions {
-    // environment.png, environment.hdr and brdf_lut.png: for people and other tools;
-    // load() reads none of them (a cache entry leaves them out).
-    bool previews = true;
+// A file environment's environment.exr (and environment.hdr with previews), encoded from
+// its texels ahead of the bake that saves them (BakeSettings::encoded_environment): a
+// program encodes them on one thread while another starts the device.
+struct EncodedEnvironmentFiles {
+    std::string content_hash;  // of the texels encoded (EnvironmentSource::content_hash)
+    uint32_t width = 0, height = 0;
+    bool previews = false;
+    std::vector<uint8_t> exr;
+    std::vector<uint8_t> hdr;  // empty without previews
 };
+// An Error for a built-in environment (its texels are made on the device) and when an
+// encoder fails.
+Result<EncodedEnvironmentFiles> encode_environment_files(const EnvironmentSource& source,
+                                                         const BakeSaveOptions& options = {});
 
 class BakedEnvironment {
 public:
@@ -88,7 +97,8 @@ public:
     static Result<BakedEnvironment> load(Context& context, const std::string& dir, const FileCheck& check = {});
 
     // Writes facet-bake's files into `dir` (created if needed), all or none (io/output_set.h).
-    // The images are read back from the GPU here.
+    // The images are read back from the GPU here, but for the environment's float files
+    // when they were encoded ahead (BakeSettings::encoded_environment).
     Status save(const std::string& dir, const BakeSaveOptions& options = {}) const;
     // The same files staged into the caller's OutputSet, which the caller commits (a
     // program that blocks signals around the commit); `stop` is asked between files.
@@ -126,6 +136,8 @@ private:
     Context* context_ = nullptr;  // the images' (save() reads them back through it)
     Image environment_, cube_, specular_, irradiance_, lut_, preview_;
     Sampler cube_sampler_;
+    // environment.exr (and .hdr) encoded ahead (BakeSettings::encoded_environment), or null.
+    std::shared_ptr<const EncodedEnvironmentFiles> encoded_;
     std::vector<float> sh9_;
     std::vector<DiskLight> lights_;
     BakeMetadata metadata_;

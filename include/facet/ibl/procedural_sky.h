@@ -28,6 +28,9 @@ struct ProceduralSky {
     // Uniform radiance 1 in every direction: the white furnace.
     static ProceduralSky white();
 
+    // No light anywhere: every radiance (sun, zenith, horizon, ground) has no positive
+    // luminance (the sky's texels are mixes of them with non-negative weights).
+    bool black() const;
     // Unit vector towards the sun (world space, +Y up).
     std::array<float, 3> sun_direction() const;
     // Content hash of the parameters (16 hex digits), for bake.json and caches.

@@ -3,7 +3,9 @@
 // then rename (atomic on POSIX file systems). A failed or interrupted write leaves no
 // partial file under the final name. Runs that write several files make them appear
 // together with an OutputSet (io/output_set.h).
+#include <cstdint>
 #include <functional>
+#include <span>
 #include <string>
 
 #include <facet/core/result.h>
@@ -22,6 +24,8 @@ Status write_atomically(const std::string& path, const std::function<Status(cons
 
 // Writes text (JSON, logs) atomically.
 Status write_text_file(const std::string& path, const std::string& text);
+// Writes bytes (a file encoded ahead, io/image_io.h encode_hdr_image) atomically.
+Status write_binary_file(const std::string& path, std::span<const uint8_t> bytes);
 
 // Creates `dir` and its parents; an error names the directory and the reason
 // (exists as a file, permission denied, ...).

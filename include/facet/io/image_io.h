@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 #include <facet/core/result.h>
 
@@ -14,6 +15,12 @@ namespace facet {
 // and the reason.
 Status write_hdr_image(const std::string& path, uint32_t width, uint32_t height,
                        std::span<const float> rgba);
+
+// The bytes write_hdr_image(path, ...) writes (.exr or .hdr by `path`'s extension), made
+// in memory: a program encodes a file ahead of the moment it writes it
+// (write_binary_file). Errors name `path`.
+Result<std::vector<uint8_t>> encode_hdr_image(const std::string& path, uint32_t width, uint32_t height,
+                                              std::span<const float> rgba);
 
 // Loads the module that reads image files other than Radiance .hdr (OpenImageIO and its
 // libraries: about 0.3 s of CPU) now, so that the first such read does not pay for it;
