@@ -208,10 +208,10 @@ Status BakedEnvironment::stage(OutputSet& outputs, const std::string& dir, const
     };
     const ImageDesc e = environment_.desc();
     const char* no_previews = "previews are not written here";
-    // Files that need no more of the device are encoded and written on second threads
-    // while this one reads the cubes back and writes them (the EXR's compression is most
-    // of a save). Staging (the OutputSet) and GPU reads stay on this thread; every return
-    // below waits for the others (the futures' destructors) before the staged files go.
+    // Files are encoded and written on second threads once their texels are on the host
+    // (the EXR's compression was most of a save). Staging (the OutputSet) and GPU reads stay
+    // on this thread; every return below waits for the others (the futures' destructors)
+    // before the staged files go.
     std::vector<std::future<Status>> writing;
     auto in_background = [&](std::function<Status()> work) {
         writing.push_back(std::async(std::launch::async, std::move(work)));
@@ -248,38 +248,52 @@ Status BakedEnvironment::stage(OutputSet& outputs, const std::string& dir, const
             return write_ldr_image(png_path, e.width, e.height, rgba8);
         });
     }
-    auto ktx2 = [&](const char* name, const Image* image, const char* why_absent) -> Status {
-        if (!image) {
-            remove_old(name, why_absent);
-            return Ok{};
-        }
-        return write_ktx2(staged(name), to_ktx2(*image, read_levels(context, *image, kBakedLayout), metadata_.version));
+    // The KTX2 files' images, read back in one submission, then written on second threads.
+    struct Ktx2Output {
+        const char* name;
+        const Image* image;
+        const char* why_absent;
     };
-    if (Status s = ktx2("environment.ktx2", &cube_, ""); !s) return s;
-    if (Status s = ktx2("specular.ktx2", specular(), "this bake has no specular cube"); !s) return s;
-    if (Status s = ktx2("irradiance.ktx2", irradiance(), "this bake has no irradiance"); !s) return s;
-    if (Status s = ktx2("brdf_lut.ktx2", lut(), "this bake has no BRDF LUT"); !s) return s;
+    const Ktx2Output ktx2_outputs[] = {{"environment.ktx2", &cube_, ""},
+                                       {"specular.ktx2", specular(), "this bake has no specular cube"},
+                                       {"irradiance.ktx2", irradiance(), "this bake has no irradiance"},
+                                       {"brdf_lut.ktx2", lut(), "this bake has no BRDF LUT"}};
+    std::vector<const Image*> images;
+    for (const Ktx2Output& k : ktx2_outputs) images.push_back(k.image);
+    std::vector<Levels> read = read_levels(context, images, kBakedLayout);
+    std::vector<std::byte> lut_level0;  // for brdf_lut.png
+    if (lut_ && options.previews) lut_level0 = read[3][0];
+    for (size_t i = 0; i < std::size(ktx2_outputs); ++i) {
+        const Ktx2Output& k = ktx2_outputs[i];
+        if (!k.image) {
+            remove_old(k.name, k.why_absent);
+            continue;
+        }
+        in_background([to = staged(k.name), file = to_ktx2(*k.image, std::move(read[i]), metadata_.version)] {
+            return write_ktx2(to, file);
+        });
+    }
     if (!options.previews) {
         remove_old("brdf_lut.png", no_previews);
     } else if (lut_) {
         // LUT preview: A, B and E_avg lie in [0, 1]; shown linearly, roughness 0 on the top row.
-        const Levels levels = read_levels(context, lut_, kBakedLayout);
-        const bool half = lut_.desc().format == VK_FORMAT_R16G16B16A16_SFLOAT;
-        const size_t n = size_t(lut_.desc().width) * lut_.desc().height * 4;
-        std::vector<uint8_t> png(n);
-        for (size_t i = 0; i < n; ++i) {
-            float v;
-            if (half) {
-                uint16_t h;
-                std::memcpy(&h, levels[0].data() + i * 2, 2);
-                v = half_to_float(h);
-            } else {
-                std::memcpy(&v, levels[0].data() + i * 4, 4);
+        in_background([to = staged("brdf_lut.png"), desc = lut_.desc(), level = std::move(lut_level0)] {
+            const bool half = desc.format == VK_FORMAT_R16G16B16A16_SFLOAT;
+            const size_t n = size_t(desc.width) * desc.height * 4;
+            std::vector<uint8_t> png(n);
+            for (size_t i = 0; i < n; ++i) {
+                float v;
+                if (half) {
+                    uint16_t h;
+                    std::memcpy(&h, level.data() + i * 2, 2);
+                    v = half_to_float(h);
+                } else {
+                    std::memcpy(&v, level.data() + i * 4, 4);
+                }
+                png[i] = i % 4 == 3 ? 255 : static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
             }
-            png[i] = i % 4 == 3 ? 255 : static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
-        }
-        if (Status s = write_ldr_image(staged("brdf_lut.png"), lut_.desc().width, lut_.desc().height, png); !s)
-            return s;
+            return write_ldr_image(to, desc.width, desc.height, png);
+        });
     } else {
         remove_old("brdf_lut.png", "this bake has no BRDF LUT");
     }

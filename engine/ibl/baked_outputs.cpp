@@ -41,34 +41,50 @@ std::vector<VkDeviceSize> level_sizes(const ImageDesc& d) {
 
 }  // namespace
 
-// One staging buffer and one submission for the whole image (not one per level and layer).
-Levels read_levels(Context& context, const Image& image, VkImageLayout layout) {
-    const ImageDesc& d = image.desc();
-    const std::vector<VkDeviceSize> sizes = level_sizes(d);
+// One staging buffer and one submission for every image (not one per level and layer).
+std::vector<Levels> read_levels(Context& context, std::span<const Image* const> images, VkImageLayout layout) {
+    std::vector<std::vector<VkDeviceSize>> sizes(images.size());
+    std::vector<std::vector<VkBufferImageCopy>> regions(images.size());
     VkDeviceSize total = 0;
-    for (VkDeviceSize s : sizes) total += s;
+    for (size_t i = 0; i < images.size(); ++i) {
+        if (!images[i]) continue;
+        sizes[i] = level_sizes(images[i]->desc());
+        regions[i] = level_regions(images[i]->desc(), sizes[i]);
+        for (VkBufferImageCopy& r : regions[i]) r.bufferOffset += total;
+        for (VkDeviceSize s : sizes[i]) total += s;
+    }
+    std::vector<Levels> out(images.size());
+    if (total == 0) return out;
     Buffer staging = or_throw(
         Buffer::create(context, total, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::readback, "baked image readback"));
-    const VkImageSubresourceRange all = whole_range(d);
-    const auto regions = level_regions(d, sizes);
     or_throw(context.submit_and_wait([&](VkCommandBuffer cmd) {
-        image_barrier(cmd, image.handle(), all, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                      VK_ACCESS_2_TRANSFER_READ_BIT);
-        vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(),
-                               uint32_t(regions.size()), regions.data());
-        image_barrier(cmd, image.handle(), all, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, layout,
-                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                      VK_ACCESS_2_NONE);
+        for (size_t i = 0; i < images.size(); ++i) {
+            if (!images[i]) continue;
+            const Image& image = *images[i];
+            const VkImageSubresourceRange all = whole_range(image.desc());
+            image_barrier(cmd, image.handle(), all, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                          VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+            vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(),
+                                   uint32_t(regions[i].size()), regions[i].data());
+            image_barrier(cmd, image.handle(), all, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, layout,
+                          VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                          VK_ACCESS_2_NONE);
+        }
         memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                        VK_ACCESS_2_HOST_READ_BIT);
     }, "reading a baked image back"));
     or_throw(staging.invalidate());
-    Levels levels;
     const auto* bytes = static_cast<const std::byte*>(staging.mapped());
-    for (uint32_t m = 0; m < d.mip_levels; ++m)
-        levels.emplace_back(bytes + regions[m].bufferOffset, bytes + regions[m].bufferOffset + sizes[m]);
-    return levels;
+    for (size_t i = 0; i < images.size(); ++i)
+        for (size_t m = 0; m < regions[i].size(); ++m)
+            out[i].emplace_back(bytes + regions[i][m].bufferOffset, bytes + regions[i][m].bufferOffset + sizes[i][m]);
+    return out;
+}
+
+Levels read_levels(Context& context, const Image& image, VkImageLayout layout) {
+    const Image* one[] = {&image};
+    return std::move(read_levels(context, one, layout).front());
 }
 
 Image make_baked_image(Context& context, const ImageDesc& desc, const Levels& levels, const std::string& name) {

@@ -3,6 +3,7 @@
 // from texels, reading them back and the names of formats.
 #include <cstddef>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,8 @@ inline constexpr VkImageLayout kBakedLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_O
 
 // Every level and layer of `image`, which is in `layout` and is left in it.
 Levels read_levels(Context& context, const Image& image, VkImageLayout layout);
+// The same for several images in one submission (no Levels for a null image).
+std::vector<Levels> read_levels(Context& context, std::span<const Image* const> images, VkImageLayout layout);
 
 // A sampled image of `desc` holding `levels`, left in kBakedLayout.
 Image make_baked_image(Context& context, const ImageDesc& desc, const Levels& levels, const std::string& name);
