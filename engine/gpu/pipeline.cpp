@@ -143,6 +143,7 @@ Pipeline::Pipeline(Pipeline&& other) noexcept
       reflection_(std::move(other.reflection_)),
       layout_(std::move(other.layout_)),
       pipeline_(std::exchange(other.pipeline_, VK_NULL_HANDLE)),
+      module_(std::exchange(other.module_, VK_NULL_HANDLE)),
       bind_point_(other.bind_point_) {}
 
 Pipeline& Pipeline::operator=(Pipeline&& other) noexcept {
@@ -153,6 +154,7 @@ Pipeline& Pipeline::operator=(Pipeline&& other) noexcept {
         reflection_ = std::move(other.reflection_);
         layout_ = std::move(other.layout_);
         pipeline_ = std::exchange(other.pipeline_, VK_NULL_HANDLE);
+        module_ = std::exchange(other.module_, VK_NULL_HANDLE);
         bind_point_ = other.bind_point_;
     }
     return *this;
@@ -160,10 +162,19 @@ Pipeline& Pipeline::operator=(Pipeline&& other) noexcept {
 
 void Pipeline::reset() {
     if (pipeline_) vkDestroyPipeline(context_->device(), pipeline_, nullptr);
+    if (module_) vkDestroyShaderModule(context_->device(), module_, nullptr);
     pipeline_ = VK_NULL_HANDLE;
+    module_ = VK_NULL_HANDLE;
 }
 
 Result<Pipeline> Pipeline::compute(Context& context, std::span<const uint32_t> spirv, const std::string& name) {
+    auto p = compute_deferred(context, spirv, name);
+    if (!p) return p.error();
+    if (Status s = p->create_compute(); !s) return s.error();
+    return p;
+}
+
+Result<Pipeline> Pipeline::compute_deferred(Context& context, std::span<const uint32_t> spirv, const std::string& name) {
     require_spirv(spirv, name);
     auto reflection = reflect_spirv(spirv, name);
     if (!reflection) return reflection.error();
@@ -179,23 +190,32 @@ Result<Pipeline> Pipeline::compute(Context& context, std::span<const uint32_t> s
     p.layout_ = std::move(layout).value();
     ShaderModule module;
     if (Status s = create_module(context, spirv, name, module); !s) return s.error();
+    p.module_ = std::exchange(module.module, VK_NULL_HANDLE);
+    return p;
+}
+
+Status Pipeline::create_compute() {
+    if (bind_point_ != VK_PIPELINE_BIND_POINT_COMPUTE || !module_ || pipeline_)
+        throw UsageError("pipeline '" + name_ + "': create_compute() is for a pipeline made by compute_deferred(), once");
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
     info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    info.stage.module = module.module;
+    info.stage.module = module_;
     info.stage.pName = "main";
-    info.layout = p.layout_.handle();
+    info.layout = layout_.handle();
     // Dispatches may start at a workgroup other than 0 (vkCmdDispatchBase: a cube's faces
     // in passes of their own, ibl/specular.cpp).
     info.flags = VK_PIPELINE_CREATE_DISPATCH_BASE_BIT;
     VkResult r = take_injected_fault(FaultSite::pipeline);
-    if (r == VK_SUCCESS) r = vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline_);
+    if (r == VK_SUCCESS) r = vkCreateComputePipelines(context_->device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_);
+    vkDestroyShaderModule(context_->device(), module_, nullptr);
+    module_ = VK_NULL_HANDLE;
     if (r != VK_SUCCESS) {
-        p.pipeline_ = VK_NULL_HANDLE;
-        return Error{name + ": vkCreateComputePipelines failed (" + vk_result_name(r) + ")", r};
+        pipeline_ = VK_NULL_HANDLE;
+        return Error{name_ + ": vkCreateComputePipelines failed (" + vk_result_name(r) + ")", r};
     }
-    context.set_name(p.pipeline_, VK_OBJECT_TYPE_PIPELINE, name);
-    return p;
+    context_->set_name(pipeline_, VK_OBJECT_TYPE_PIPELINE, name_);
+    return Ok{};
 }
 
 Result<Pipeline> Pipeline::graphics(Context& context, const GraphicsDesc& desc, const std::string& name) {
@@ -300,10 +320,13 @@ Result<Pipeline> Pipeline::graphics(Context& context, const GraphicsDesc& desc, 
     return p;
 }
 
-void Pipeline::bind(VkCommandBuffer cmd) const { vkCmdBindPipeline(cmd, bind_point_, pipeline_); }
+void Pipeline::bind(VkCommandBuffer cmd) const {
+    if (!pipeline_) throw UsageError("pipeline '" + name_ + "': bound before it was created");
+    vkCmdBindPipeline(cmd, bind_point_, pipeline_);
+}
 
 std::array<uint32_t, 3> Pipeline::workgroup_size() const {
-    if (bind_point_ != VK_PIPELINE_BIND_POINT_COMPUTE || !pipeline_)
+    if (bind_point_ != VK_PIPELINE_BIND_POINT_COMPUTE || !context_)
         throw UsageError("pipeline '" + name_ + "': only a compute pipeline has a workgroup size");
     return reflection_.workgroup_size;
 }

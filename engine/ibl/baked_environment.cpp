@@ -87,6 +87,8 @@ Outputs run_bake_graph(Context& context, ProgramCache& programs, const Environme
         }
     }
     RenderGraph graph;
+    // The driver compiles the passes' pipelines on every core while the graph is built.
+    ProgramCache::Batch pipelines(programs);
     IblImages images = check(ibl.add_passes(graph, source, settings.ibl, split));
     ImageHandle preview;
     if (settings.preview) {
@@ -121,6 +123,9 @@ Outputs run_bake_graph(Context& context, ProgramCache& programs, const Environme
                                   VK_ACCESS_2_TRANSFER_READ_BIT};
     graph.export_buffer(ranges, read_back);
     if (images.sh9.valid()) graph.export_buffer(images.sh9, read_back);
+    // The conversion of the outputs to RGBA16F after the run, compiled with the others.
+    if (settings.format == VK_FORMAT_R16G16B16A16_SFLOAT) check(programs.compute("ibl/to_half.comp"));
+    if (Status made = pipelines.finish(); !made) throw made.error();
     CompiledGraph compiled = graph.compile();
     if (cb.graph_dot) cb.graph_dot(compiled.to_dot());
     bake_safe_point(cb.stop, "graph");

@@ -1,5 +1,8 @@
 #include <facet/shader/program_cache.h>
 
+#include <algorithm>
+
+#include <facet/core/result.h>
 #include <facet/gpu/context.h>
 
 namespace facet {
@@ -18,11 +21,65 @@ Result<const Pipeline*> ProgramCache::compute(const std::string& shader, std::sp
     std::string key = shader;
     for (const ShaderDefine& d : defines) key += "|" + d.name + "=" + d.value;
     std::vector<ShaderDefine> define_list(defines.begin(), defines.end());
-    return get(key, [this, shader, define_list]() -> Result<Pipeline> {
+    auto build = [this, shader, define_list]() -> Result<Pipeline> {
         auto spirv = compiler_.compile(ShaderStage::compute, shader, define_list);
         if (!spirv) return spirv.error();
         return Pipeline::compute(context_, spirv->words, shader);
-    });
+    };
+    if (!batch_ || pipelines_.count(key)) return get(key, std::move(build));
+    // In a batch: the driver's compilation goes to the batch's workers.
+    auto spirv = compiler_.compile(ShaderStage::compute, shader, define_list);
+    if (!spirv) return spirv.error();
+    auto deferred = Pipeline::compute_deferred(context_, spirv->words, shader);
+    if (!deferred) return deferred.error();
+    Entry entry{std::make_unique<Pipeline>(std::move(deferred).value()), std::move(build)};
+    Pipeline* result = entry.pipeline.get();
+    pipelines_.emplace(key, std::move(entry));
+    batch_->add(key, result);
+    return result;
+}
+
+ProgramCache::Batch::Batch(ProgramCache& cache) : cache_(cache) {
+    if (cache_.batch_) throw UsageError("ProgramCache: one Batch at a time");
+    cache_.batch_ = this;
+}
+
+ProgramCache::Batch::~Batch() { (void)finish(); }
+
+void ProgramCache::Batch::add(const std::string& key, Pipeline* pipeline) {
+    std::lock_guard lock(mutex_);
+    queue_.emplace_back(key, pipeline);
+    if (workers_.size() < std::max(1u, std::thread::hardware_concurrency())) workers_.emplace_back([this] { work(); });
+    wake_.notify_one();
+}
+
+void ProgramCache::Batch::work() {
+    std::unique_lock lock(mutex_);
+    for (;;) {
+        wake_.wait(lock, [&] { return closing_ || !queue_.empty(); });
+        if (queue_.empty()) return;
+        auto [key, pipeline] = queue_.front();
+        queue_.pop_front();
+        lock.unlock();
+        Status created = pipeline->create_compute();
+        lock.lock();
+        if (!created) failed_.emplace_back(key, created.error());
+    }
+}
+
+Status ProgramCache::Batch::finish() {
+    if (finished_) return Ok{};
+    {
+        std::lock_guard lock(mutex_);
+        closing_ = true;
+    }
+    wake_.notify_all();
+    for (std::thread& t : workers_) t.join();
+    finished_ = true;
+    cache_.batch_ = nullptr;
+    for (const auto& [key, error] : failed_) cache_.pipelines_.erase(key);
+    if (!failed_.empty()) return failed_.front().second;
+    return Ok{};
 }
 
 Result<const Pipeline*> ProgramCache::graphics(const std::string& vertex_shader, const std::string& fragment_shader,
@@ -52,6 +109,8 @@ Result<const Pipeline*> ProgramCache::graphics(const std::string& vertex_shader,
 }
 
 Result<size_t> ProgramCache::reload() {
+    if (batch_)
+        if (Status s = batch_->finish(); !s) return s.error();
     std::vector<std::pair<Entry*, Pipeline>> rebuilt;
     for (auto& [key, entry] : pipelines_) {
         auto built = entry.build();

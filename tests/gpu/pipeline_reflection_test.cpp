@@ -11,6 +11,8 @@
 #include <facet/gpu/resources.h>
 #include <facet/gpu/transfer.h>
 #include <facet/shader/compiler.h>
+#include <facet/shader/program_cache.h>
+#include "gpu/fault_injection.h"
 #include "support/gpu_test.h"
 
 namespace facet {
@@ -124,6 +126,70 @@ TEST_F(PipelineReflectionTest, PushingDescriptorsTheShaderDoesNotDeclareIsMisuse
                                        DescriptorWrite::storage_buffer(buffer.handle())};
         EXPECT_THROW(pipeline.push_descriptors(cmd, two), UsageError);
     }));
+}
+
+// compute() in two steps: the reflection first, the VkPipeline once create_compute() ran;
+// binding it before is misuse, and so is creating it twice.
+TEST_F(PipelineReflectionTest, ADeferredPipelineIsBoundOnlyOnceCreated) {
+    auto spirv = compiler_.compile_source(ShaderStage::compute, "grid.comp", grid_source);
+    ASSERT_TRUE(spirv) << spirv.error().message;
+    auto deferred = Pipeline::compute_deferred(ctx(), spirv->words, "grid");
+    ASSERT_TRUE(deferred) << deferred.error().message;
+    EXPECT_FALSE(deferred->created());
+    EXPECT_EQ(deferred->workgroup_size(), (std::array<uint32_t, 3>{16, 4, 1}));
+    test::must(ctx().submit_and_wait([&](VkCommandBuffer cmd) { EXPECT_THROW(deferred->bind(cmd), UsageError); }));
+    ASSERT_TRUE(deferred->create_compute());
+    EXPECT_TRUE(deferred->created());
+    EXPECT_THROW((void)deferred->create_compute(), UsageError);
+    test::must(ctx().submit_and_wait([&](VkCommandBuffer cmd) { deferred->bind(cmd); }));
+}
+
+// A ProgramCache::Batch: the pipelines asked for have their reflection at once and are
+// created by finish(); the same key gives the same pipeline; a pipeline that fails to be
+// created is finish()'s error and leaves the cache, so that asking again makes it anew.
+TEST_F(PipelineReflectionTest, ABatchCreatesItsPipelinesOnWorkersByFinish) {
+    ProgramCache programs(ctx(), compiler_);
+    const char* shaders[] = {"ibl/to_half.comp", "ibl/cube_downsample.comp", "ibl/output_range.comp",
+                             "ibl/cube_copy_level.comp"};
+    std::vector<const Pipeline*> made;
+    {
+        ProgramCache::Batch batch(programs);
+        EXPECT_THROW(ProgramCache::Batch second(programs), UsageError);
+        for (const char* shader : shaders) {
+            auto p = programs.compute(shader);
+            ASSERT_TRUE(p) << p.error().message;
+            EXPECT_EQ((*p)->workgroup_size()[2], 1u) << shader;
+            made.push_back(*p);
+        }
+        EXPECT_EQ(*programs.compute(shaders[0]), made[0]);
+        ASSERT_TRUE(batch.finish());
+    }
+    for (const Pipeline* p : made) EXPECT_TRUE(p->created());
+    EXPECT_EQ(*programs.compute(shaders[1]), made[1]);
+
+    // A pipeline of a second batch fails: finish() says so; the first batch's stays.
+    ProgramCache fresh(ctx(), compiler_);
+    {
+        ProgramCache::Batch batch(fresh);
+        ASSERT_TRUE(fresh.compute(shaders[0]));
+        ASSERT_TRUE(batch.finish());
+    }
+    inject_fault(FaultSite::pipeline, 0);
+    {
+        ProgramCache::Batch batch(fresh);
+        ASSERT_TRUE(fresh.compute(shaders[0]));  // made already: nothing to create
+        ASSERT_TRUE(fresh.compute(shaders[1]));
+        Status finished = batch.finish();
+        ASSERT_FALSE(finished);
+        EXPECT_NE(finished.error().message.find("vkCreateComputePipelines failed"), std::string::npos)
+            << finished.error().message;
+        EXPECT_NE(finished.error().message.find(shaders[1]), std::string::npos) << finished.error().message;
+    }
+    clear_injected_faults();
+    EXPECT_TRUE((*fresh.compute(shaders[0]))->created());
+    auto again = fresh.compute(shaders[1]);
+    ASSERT_TRUE(again) << again.error().message;
+    EXPECT_TRUE((*again)->created());
 }
 
 TEST_F(PipelineReflectionTest, OnlyComputePipelinesHaveAWorkgroupSize) {

@@ -73,6 +73,14 @@ public:
     // A compute pipeline running `spirv` (entry point "main"); bindings, push-constant
     // size and workgroup size are read from it.
     static Result<Pipeline> compute(Context& context, std::span<const uint32_t> spirv, const std::string& name);
+    // compute() in two steps, so that the driver's compilation (the slow one) can run on
+    // another thread (ProgramCache::Batch): everything but the VkPipeline first (its
+    // reflection, layout and shader module), then create_compute() makes the VkPipeline,
+    // once. Until then the pipeline cannot be bound (bind() is a UsageError).
+    static Result<Pipeline> compute_deferred(Context& context, std::span<const uint32_t> spirv,
+                                             const std::string& name);
+    Status create_compute();
+    bool created() const { return pipeline_ != VK_NULL_HANDLE; }
 
     struct GraphicsDesc {
         std::span<const uint32_t> vertex_spirv;
@@ -121,6 +129,7 @@ private:
     ShaderReflection reflection_;
     PipelineLayout layout_;
     VkPipeline pipeline_ = VK_NULL_HANDLE;
+    VkShaderModule module_ = VK_NULL_HANDLE;  // kept from compute_deferred() to create_compute()
     VkPipelineBindPoint bind_point_ = VK_PIPELINE_BIND_POINT_COMPUTE;
 };
 
