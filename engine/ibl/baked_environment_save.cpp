@@ -260,24 +260,23 @@ Status BakedEnvironment::stage(OutputSet& outputs, const std::string& dir, const
                                        {"brdf_lut.ktx2", lut(), "this bake has no BRDF LUT"}};
     std::vector<const Image*> images;
     for (const Ktx2Output& k : ktx2_outputs) images.push_back(k.image);
-    std::vector<Levels> read = read_levels(context, images, kBakedLayout);
-    std::vector<std::byte> lut_level0;  // for brdf_lut.png
-    if (lut_ && options.previews) lut_level0 = read[3][0];
+    const ReadBack read = read_back(context, images, kBakedLayout);
     for (size_t i = 0; i < std::size(ktx2_outputs); ++i) {
         const Ktx2Output& k = ktx2_outputs[i];
         if (!k.image) {
             remove_old(k.name, k.why_absent);
             continue;
         }
-        in_background([to = staged(k.name), file = to_ktx2(*k.image, std::move(read[i]), metadata_.version)] {
-            return write_ktx2(to, file);
+        in_background([to = staged(k.name), file = to_ktx2(*k.image, {}, metadata_.version), read, i] {
+            return write_ktx2(to, file, read.levels[i]);
         });
     }
     if (!options.previews) {
         remove_old("brdf_lut.png", no_previews);
     } else if (lut_) {
         // LUT preview: A, B and E_avg lie in [0, 1]; shown linearly, roughness 0 on the top row.
-        in_background([to = staged("brdf_lut.png"), desc = lut_.desc(), level = std::move(lut_level0)] {
+        in_background([to = staged("brdf_lut.png"), desc = lut_.desc(), read] {
+            const std::span<const std::byte> level = read.levels[3][0];
             const bool half = desc.format == VK_FORMAT_R16G16B16A16_SFLOAT;
             const size_t n = size_t(desc.width) * desc.height * 4;
             std::vector<uint8_t> png(n);

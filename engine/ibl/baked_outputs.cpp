@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 
 #include <facet/gpu/context.h>
 #include <facet/gpu/transfer.h>
@@ -42,7 +43,7 @@ std::vector<VkDeviceSize> level_sizes(const ImageDesc& d) {
 }  // namespace
 
 // One staging buffer and one submission for every image (not one per level and layer).
-std::vector<Levels> read_levels(Context& context, std::span<const Image* const> images, VkImageLayout layout) {
+ReadBack read_back(Context& context, std::span<const Image* const> images, VkImageLayout layout) {
     std::vector<std::vector<VkDeviceSize>> sizes(images.size());
     std::vector<std::vector<VkBufferImageCopy>> regions(images.size());
     VkDeviceSize total = 0;
@@ -53,10 +54,11 @@ std::vector<Levels> read_levels(Context& context, std::span<const Image* const> 
         for (VkBufferImageCopy& r : regions[i]) r.bufferOffset += total;
         for (VkDeviceSize s : sizes[i]) total += s;
     }
-    std::vector<Levels> out(images.size());
+    ReadBack out;
+    out.levels.resize(images.size());
     if (total == 0) return out;
-    Buffer staging = or_throw(
-        Buffer::create(context, total, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::readback, "baked image readback"));
+    out.staging = std::make_shared<Buffer>(or_throw(
+        Buffer::create(context, total, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::readback, "baked image readback")));
     or_throw(context.submit_and_wait([&](VkCommandBuffer cmd) {
         for (size_t i = 0; i < images.size(); ++i) {
             if (!images[i]) continue;
@@ -65,7 +67,7 @@ std::vector<Levels> read_levels(Context& context, std::span<const Image* const> 
             image_barrier(cmd, image.handle(), all, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                           VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
                           VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-            vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging.handle(),
+            vkCmdCopyImageToBuffer(cmd, image.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, out.staging->handle(),
                                    uint32_t(regions[i].size()), regions[i].data());
             image_barrier(cmd, image.handle(), all, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, layout,
                           VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
@@ -74,17 +76,20 @@ std::vector<Levels> read_levels(Context& context, std::span<const Image* const> 
         memory_barrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                        VK_ACCESS_2_HOST_READ_BIT);
     }, "reading a baked image back"));
-    or_throw(staging.invalidate());
-    const auto* bytes = static_cast<const std::byte*>(staging.mapped());
+    or_throw(out.staging->invalidate());
+    const auto* bytes = static_cast<const std::byte*>(out.staging->mapped());
     for (size_t i = 0; i < images.size(); ++i)
         for (size_t m = 0; m < regions[i].size(); ++m)
-            out[i].emplace_back(bytes + regions[i][m].bufferOffset, bytes + regions[i][m].bufferOffset + sizes[i][m]);
+            out.levels[i].emplace_back(bytes + regions[i][m].bufferOffset, sizes[i][m]);
     return out;
 }
 
 Levels read_levels(Context& context, const Image& image, VkImageLayout layout) {
     const Image* one[] = {&image};
-    return std::move(read_levels(context, one, layout).front());
+    const ReadBack read = read_back(context, one, layout);
+    Levels levels;
+    for (std::span<const std::byte> level : read.levels.front()) levels.emplace_back(level.begin(), level.end());
+    return levels;
 }
 
 Image make_baked_image(Context& context, const ImageDesc& desc, const Levels& levels, const std::string& name) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include <facet/gpu/resources.h>
 #include <facet/ibl/baked_environment.h>
 
 namespace facet {
@@ -38,8 +39,14 @@ inline constexpr VkImageLayout kBakedLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_O
 
 // Every level and layer of `image`, which is in `layout` and is left in it.
 Levels read_levels(Context& context, const Image& image, VkImageLayout layout);
-// The same for several images in one submission (no Levels for a null image).
-std::vector<Levels> read_levels(Context& context, std::span<const Image* const> images, VkImageLayout layout);
+// Every level of several images (each in `layout`, left in it), read back in one
+// submission and left in the mapped staging buffer, which the spans point into and which
+// lives as long as any copy of the ReadBack (writers on other threads share it).
+struct ReadBack {
+    std::shared_ptr<Buffer> staging;
+    std::vector<std::vector<std::span<const std::byte>>> levels;  // per image (none for a null image)
+};
+ReadBack read_back(Context& context, std::span<const Image* const> images, VkImageLayout layout);
 
 // A sampled image of `desc` holding `levels`, left in kBakedLayout.
 Image make_baked_image(Context& context, const ImageDesc& desc, const Levels& levels, const std::string& name);

@@ -134,7 +134,8 @@ Result<std::vector<std::byte>> make_kvd(const std::string& path, std::vector<std
     return std::move(w.bytes);
 }
 
-Status validate_for_writing(const std::string& path, const Ktx2Image& image, const FormatInfo* info) {
+Status validate_for_writing(const std::string& path, const Ktx2Image& image,
+                            std::span<const std::span<const std::byte>> levels, const FormatInfo* info) {
     if (!info) return Error{path + ": unsupported VkFormat " + std::to_string(image.format)};
     if (image.width == 0 || image.height == 0 || image.width > kMaxDimension || image.height > kMaxDimension)
         return Error{path + ": invalid size " + std::to_string(image.width) + "x" + std::to_string(image.height)};
@@ -143,13 +144,13 @@ Status validate_for_writing(const std::string& path, const Ktx2Image& image, con
     if (image.faces == 6 && image.width != image.height) return Error{path + ": a cube map must be square"};
     if (image.levels == 0 || image.levels > max_levels(image.width, image.height))
         return Error{path + ": invalid level count " + std::to_string(image.levels)};
-    if (image.level_data.size() != image.levels)
-        return Error{path + ": " + std::to_string(image.level_data.size()) + " levels of data for " +
+    if (levels.size() != image.levels)
+        return Error{path + ": " + std::to_string(levels.size()) + " levels of data for " +
                      std::to_string(image.levels) + " levels"};
     for (uint32_t l = 0; l < image.levels; ++l) {
         uint64_t expected = level_bytes(*info, image.width, image.height, image.faces, l);
-        if (image.level_data[l].size() != expected)
-            return Error{path + ": level " + std::to_string(l) + " holds " + std::to_string(image.level_data[l].size()) +
+        if (levels[l].size() != expected)
+            return Error{path + ": level " + std::to_string(l) + " holds " + std::to_string(levels[l].size()) +
                          " bytes, expected " + std::to_string(expected)};
     }
     return Ok{};
@@ -289,12 +290,18 @@ uint64_t ktx2_level_size(const Ktx2Image& image, uint32_t level) {
 }
 
 Status write_ktx2(const std::string& path, const Ktx2Image& image) {
+    std::vector<std::span<const std::byte>> levels(image.level_data.begin(), image.level_data.end());
+    return write_ktx2(path, image, levels);
+}
+
+Status write_ktx2(const std::string& path, const Ktx2Image& image, std::span<const std::span<const std::byte>> levels) {
     const FormatInfo* info = find_format(static_cast<uint32_t>(image.format));
-    if (Status valid = validate_for_writing(path, image, info); !valid) return valid;
+    if (Status valid = validate_for_writing(path, image, levels, info); !valid) return valid;
     std::vector<std::byte> dfd = make_dfd(*info);
     Result<std::vector<std::byte>> kvd = make_kvd(path, image.key_values);
     if (!kvd) return kvd.error();
 
+    // Everything before the levels' data, and where each level's data goes.
     ByteWriter w;
     w.append(kIdentifier, sizeof kIdentifier);
     for (uint32_t v : {uint32_t(info->format), info->channel_bytes, image.width, image.height, 0u, 0u, image.faces,
@@ -313,20 +320,31 @@ Status write_ktx2(const std::string& path, const Ktx2Image& image) {
     w.append(dfd.data(), dfd.size());
     w.append(kvd->data(), kvd->size());
     // "Mip Level Array": smallest level first, so a streaming loader can show a low mip early.
+    const uint64_t alignment = level_alignment(*info);
+    std::vector<uint64_t> offsets(image.levels);
+    uint64_t end = w.bytes.size();
     for (uint32_t l = image.levels; l-- > 0;) {
-        w.pad_to(level_alignment(*info));
-        const std::vector<std::byte>& level = image.level_data[l];
+        end = (end + alignment - 1) / alignment * alignment;
+        offsets[l] = end;
         size_t entry = level_index + kLevelEntrySize * l;
-        w.put_u64(entry, w.bytes.size());
-        w.put_u64(entry + 8, level.size());
-        w.put_u64(entry + 16, level.size());
-        w.append(level.data(), level.size());
+        w.put_u64(entry, end);
+        w.put_u64(entry + 8, levels[l].size());
+        w.put_u64(entry + 16, levels[l].size());
+        end += levels[l].size();
     }
 
+    // The levels are written from where they lie (a mapped readback buffer: no copy).
     return write_atomically(path, [&](const std::string& temp) -> Status {
         std::ofstream out(temp, std::ios::binary);
         if (!out) return Error{path + ": cannot open for writing: " + std::error_code(errno, std::generic_category()).message()};
         out.write(reinterpret_cast<const char*>(w.bytes.data()), static_cast<std::streamsize>(w.bytes.size()));
+        uint64_t at = w.bytes.size();
+        static const char zeros[64] = {};
+        for (uint32_t l = image.levels; l-- > 0;) {
+            out.write(zeros, static_cast<std::streamsize>(offsets[l] - at));
+            out.write(reinterpret_cast<const char*>(levels[l].data()), static_cast<std::streamsize>(levels[l].size()));
+            at = offsets[l] + levels[l].size();
+        }
         out.close();
         if (!out) return Error{path + ": write failed (disk full?)"};
         return Ok{};

@@ -92,8 +92,9 @@ TEST(InterruptBake, SigintDuringShaderCompilationWritesNothingAndKeepsTheCacheVa
     const fs::path& reference = reference_bake();
     TempDir dir("interrupt_bake_shaders");
     const auto args = bake_args(dir / "out", {"--shader-cache", (dir / "cache").string()});
-    // The line before the first shader is compiled (the cache starts empty).
-    const Stopped s = interrupt_at(args, "-> cube 16^2", SIGINT);
+    // Paused between the first shaders (the BRDF LUT's, for its cache key) and the bake's:
+    // the cache starts empty, so the rest are compiled only by the rerun.
+    const Stopped s = interrupt_at(args, "paused at shaders", SIGINT, {"FACET_TEST_PAUSE_AT=shaders"});
     expect_stopped_by(s, SIGINT);
     EXPECT_EQ(s.output.find("running"), std::string::npos) << "not stopped before the passes:\n" << s.output;
     EXPECT_TRUE(snapshot(dir / "out").empty()) << names(snapshot(dir / "out")).size() << " files left";

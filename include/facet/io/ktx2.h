@@ -5,6 +5,7 @@
 // viewers load what facet-bake produces.
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,6 +38,9 @@ uint64_t ktx2_level_size(const Ktx2Image& image, uint32_t level);
 // Writes atomically (no partial file under `path` on failure). Errors name the file and
 // the reason (unsupported format, level size mismatch, cannot write, ...).
 Status write_ktx2(const std::string& path, const Ktx2Image& image);
+// The same with the levels' bytes where they lie (a mapped readback buffer, say) instead
+// of image.level_data, which is not read.
+Status write_ktx2(const std::string& path, const Ktx2Image& image, std::span<const std::span<const std::byte>> levels);
 
 // Validates the whole file before trusting any offset or length; a truncated, corrupt or
 // unsupported file gives an Error naming the file and the problem.
