@@ -246,12 +246,18 @@ Result<BakedEnvironment> bake(Context& context, ProgramCache& programs, const En
     for (const OutputRange& range : r.ranges) bad += range.bad;
     if (bad) return Error{std::to_string(bad) + " baked values are NaN, Inf or negative"};
 
-    // Each output in the format asked for when its values fit it, else in RGBA32F, said.
+    // Each output in the format asked for when its values fit it, else in RGBA32F, said;
+    // the conversions to RGBA16F in one submission.
+    struct Kept {
+        Image* image;
+        const char* what;
+    };
+    std::vector<Kept> kept;
     size_t next_range = 1;  // ranges[0] is the environment's, which stays RGBA32F
-    auto keep = [&](Image image, const char* what, VkFormat& format) {
+    auto keep = [&](Image& image, const char* what, VkFormat& format) {
         const float peak = r.ranges[next_range++].peak;
         format = VK_FORMAT_R32G32B32A32_SFLOAT;
-        if (settings.format != VK_FORMAT_R16G16B16A16_SFLOAT) return image;
+        if (settings.format != VK_FORMAT_R16G16B16A16_SFLOAT) return;
         if (peak > kHalfMax) {
             char text[200];
             std::snprintf(text, sizeof text,
@@ -259,16 +265,30 @@ Result<BakedEnvironment> bake(Context& context, ProgramCache& programs, const En
                           "65504",
                           what, double(peak));
             meta.format_notes.push_back(text);
-            return image;
+            return;
         }
         format = VK_FORMAT_R16G16B16A16_SFLOAT;
-        return convert_to_half(programs, image, kBakedLayout, std::string("baked ") + what);
+        kept.push_back({&image, what});
     };
+    keep(r.cube, "environment cube", meta.cube_format);
+    if (r.specular) keep(r.specular, "specular", meta.specular_format);
+    if (r.irradiance) keep(r.irradiance, "irradiance", meta.irradiance_format);
+    if (r.lut) keep(r.lut, "brdf lut", meta.lut_format);
+    if (!kept.empty()) {
+        std::vector<Image*> images;
+        std::vector<std::string> names;
+        for (const Kept& k : kept) {
+            images.push_back(k.image);
+            names.push_back(std::string("baked ") + k.what);
+        }
+        std::vector<Image> halves = convert_to_half(programs, images, kBakedLayout, names);
+        for (size_t i = 0; i < kept.size(); ++i) *kept[i].image = std::move(halves[i]);
+    }
     A::environment(out) = std::move(r.environment);
-    A::cube(out) = keep(std::move(r.cube), "environment cube", meta.cube_format);
-    if (r.specular) A::specular(out) = keep(std::move(r.specular), "specular", meta.specular_format);
-    if (r.irradiance) A::irradiance(out) = keep(std::move(r.irradiance), "irradiance", meta.irradiance_format);
-    if (r.lut) A::lut(out) = keep(std::move(r.lut), "brdf lut", meta.lut_format);
+    A::cube(out) = std::move(r.cube);
+    if (r.specular) A::specular(out) = std::move(r.specular);
+    if (r.irradiance) A::irradiance(out) = std::move(r.irradiance);
+    if (r.lut) A::lut(out) = std::move(r.lut);
     A::sh9(out) = std::move(r.sh9);
     A::preview(out) = std::move(r.preview);
     A::cube_sampler(out) = or_throw(Sampler::create(context, VK_FILTER_LINEAR, true, false, "baked cube sampler"));

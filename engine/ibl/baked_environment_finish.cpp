@@ -90,49 +90,61 @@ std::vector<OutputRange> read_output_ranges(Context& context, const Buffer& rang
     return out;
 }
 
-Image convert_to_half(ProgramCache& programs, Image& rgba32f, VkImageLayout layout, const std::string& name) {
+std::vector<Image> convert_to_half(ProgramCache& programs, std::span<Image* const> rgba32f, VkImageLayout layout,
+                                   std::span<const std::string> names) {
     Context& context = programs.context();
     const Pipeline* convert = or_throw(programs.compute("ibl/to_half.comp"));
-    ImageDesc desc = rgba32f.desc();
-    desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
-    Image half = or_throw(Image::create(context, desc,
-                                        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
-                                            VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                                        name));
+    std::vector<Image> halves;
     // The views are made before recording (the images keep them).
-    std::vector<std::pair<VkImageView, VkImageView>> views;
-    for (uint32_t m = 0; m < desc.mip_levels; ++m) {
-        const VkImageSubresourceRange level{VK_IMAGE_ASPECT_COLOR_BIT, m, 1, 0, desc.array_layers};
-        views.emplace_back(or_throw(rgba32f.view(level, VK_IMAGE_VIEW_TYPE_2D_ARRAY)),
-                           or_throw(half.view(level, VK_IMAGE_VIEW_TYPE_2D_ARRAY)));
+    std::vector<std::vector<std::pair<VkImageView, VkImageView>>> views(rgba32f.size());
+    for (size_t i = 0; i < rgba32f.size(); ++i) {
+        ImageDesc desc = rgba32f[i]->desc();
+        desc.format = VK_FORMAT_R16G16B16A16_SFLOAT;
+        halves.push_back(or_throw(Image::create(context, desc,
+                                                VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
+                                                    VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                                                names[i])));
+        for (uint32_t m = 0; m < desc.mip_levels; ++m) {
+            const VkImageSubresourceRange level{VK_IMAGE_ASPECT_COLOR_BIT, m, 1, 0, desc.array_layers};
+            views[i].emplace_back(or_throw(rgba32f[i]->view(level, VK_IMAGE_VIEW_TYPE_2D_ARRAY)),
+                                  or_throw(halves[i].view(level, VK_IMAGE_VIEW_TYPE_2D_ARRAY)));
+        }
     }
-    const VkImageSubresourceRange all = whole_range(desc);
     or_throw(context.submit_and_wait([&](VkCommandBuffer cmd) {
         // The graph's run has completed (its fence was waited on); its writes were made
         // available by the final barriers, so the reads here wait on those.
-        image_barrier(cmd, rgba32f.handle(), all, layout, VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                      VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-        image_barrier(cmd, half.handle(), all, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                      VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                      VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        for (size_t i = 0; i < rgba32f.size(); ++i) {
+            const VkImageSubresourceRange all = whole_range(rgba32f[i]->desc());
+            image_barrier(cmd, rgba32f[i]->handle(), all, layout, VK_IMAGE_LAYOUT_GENERAL,
+                          VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+            image_barrier(cmd, halves[i].handle(), all, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                          VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        }
         convert->bind(cmd);
         const auto local = convert->workgroup_size();
-        for (uint32_t m = 0; m < desc.mip_levels; ++m) {
-            const DescriptorWrite writes[] = {DescriptorWrite::storage_image(views[m].first),
-                                              DescriptorWrite::storage_image(views[m].second)};
-            convert->push_descriptors(cmd, writes);
-            vkCmdDispatch(cmd, group_count(desc.mip_width(m), local[0]), group_count(desc.mip_height(m), local[1]),
-                          desc.array_layers);
+        for (size_t i = 0; i < rgba32f.size(); ++i) {
+            const ImageDesc& desc = rgba32f[i]->desc();
+            for (uint32_t m = 0; m < desc.mip_levels; ++m) {
+                const DescriptorWrite writes[] = {DescriptorWrite::storage_image(views[i][m].first),
+                                                  DescriptorWrite::storage_image(views[i][m].second)};
+                convert->push_descriptors(cmd, writes);
+                vkCmdDispatch(cmd, group_count(desc.mip_width(m), local[0]), group_count(desc.mip_height(m), local[1]),
+                              desc.array_layers);
+            }
         }
-        image_barrier(cmd, rgba32f.handle(), all, VK_IMAGE_LAYOUT_GENERAL, layout,
-                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                      VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-        image_barrier(cmd, half.handle(), all, VK_IMAGE_LAYOUT_GENERAL, kBakedLayout,
-                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-    }, "converting a baked output to RGBA16F"));
-    return half;
+        for (size_t i = 0; i < rgba32f.size(); ++i) {
+            const VkImageSubresourceRange all = whole_range(rgba32f[i]->desc());
+            image_barrier(cmd, rgba32f[i]->handle(), all, VK_IMAGE_LAYOUT_GENERAL, layout,
+                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_NONE,
+                          VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+            image_barrier(cmd, halves[i].handle(), all, VK_IMAGE_LAYOUT_GENERAL, kBakedLayout,
+                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+        }
+    }, "converting the baked outputs to RGBA16F"));
+    return halves;
 }
 
 }  // namespace facet

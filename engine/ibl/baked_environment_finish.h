@@ -5,6 +5,7 @@
 // RGBA16F are converted into it by a blit. Nothing of an output passes through the host;
 // only two numbers per output are read back.
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -40,9 +41,11 @@ struct OutputRange {
 };
 std::vector<OutputRange> read_output_ranges(Context& context, const Buffer& ranges, size_t count);
 
-// A copy of `rgba32f` (every level and layer, in `layout`, made with storage use) in
-// RGBA16F, made by a compute pass (ibl/to_half.comp: each value rounded to a half by the
-// store), left in kBakedLayout; `rgba32f` is left in `layout` and may be dropped afterwards.
-Image convert_to_half(ProgramCache& programs, Image& rgba32f, VkImageLayout layout, const std::string& name);
+// Copies of `rgba32f`'s images (every level and layer, in `layout`, made with storage use)
+// in RGBA16F, made by compute passes in one submission (ibl/to_half.comp: each value
+// rounded to a half by the store), left in kBakedLayout and named `names`; the originals are
+// left in `layout` and may be dropped afterwards.
+std::vector<Image> convert_to_half(ProgramCache& programs, std::span<Image* const> rgba32f, VkImageLayout layout,
+                                   std::span<const std::string> names);
 
 }  // namespace facet
