@@ -3,10 +3,13 @@
 #include <facet/core/result.h>
 #include <facet/core/units.h>
 
+#include <sys/mman.h>
+
 #include <atomic>
 #include <cstdio>
 #include <mutex>
 #include <string>
+#include "core/huge_pages.h"
 #include "core/vulkan_error.h"
 
 namespace facet {
@@ -112,6 +115,14 @@ std::string Hash64::hex() const {
     char text[17];
     std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(state));
     return text;
+}
+
+void advise_huge_pages(void* data, std::size_t size) {
+    constexpr uintptr_t huge = uintptr_t(2) << 20;
+    if (!data || size < huge) return;
+    const uintptr_t begin = (reinterpret_cast<uintptr_t>(data) + huge - 1) & ~(huge - 1);
+    const uintptr_t end = (reinterpret_cast<uintptr_t>(data) + size) & ~(huge - 1);
+    if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
 }
 
 }  // namespace facet

@@ -1,7 +1,5 @@
 #include <facet/gpu/memory.h>
 
-#include <sys/mman.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <optional>
@@ -9,6 +7,7 @@
 
 #include <facet/core/result.h>
 #include "core/guarded.h"
+#include "core/huge_pages.h"
 #include "gpu/fault_injection.h"
 
 namespace facet {
@@ -17,16 +16,7 @@ namespace {
 
 // On a CPU device (lavapipe) device memory is ordinary process memory, and a pass that
 // writes an image for the first time pays a page fault per 4 KiB: about 20 ms of the
-// 22 ms an 8 MiB upload took. Transparent huge pages (where the kernel offers them on
-// request, "madvise" mode, Debian's default) cut that 512-fold. A hint: any failure is
-// harmless and ignored.
-void advise_huge_pages(void* mapped, VkDeviceSize size) {
-    constexpr uintptr_t huge = uintptr_t(2) << 20;
-    if (!mapped || size < huge) return;
-    const uintptr_t begin = (reinterpret_cast<uintptr_t>(mapped) + huge - 1) & ~(huge - 1);
-    const uintptr_t end = (reinterpret_cast<uintptr_t>(mapped) + size) & ~(huge - 1);
-    if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
-}
+// 22 ms an 8 MiB upload took, which huge pages save (core/huge_pages.h).
 
 // Allocations made and images bound by this thread, in every allocator (made_on_this_thread).
 thread_local AllocationCounts this_thread_counts;

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include <facet/core/hash.h>
+#include "core/huge_pages.h"
 #include "io/box_downsample.h"
 #include "io/exr_header.h"
 #include "io/image_codecs.h"
@@ -104,7 +105,10 @@ Result<EnvironmentImage> decode_environment(const std::string& path, uint64_t w,
     const Size2 size = fit_within(env.source_width, env.source_height, max_width, std::max(max_width / 2, 1u));
     env.width = size.width;
     env.height = size.height;
-    env.rgba.assign(size_t(env.width) * env.height * 4, 1.0f);
+    const size_t values = size_t(env.width) * env.height * 4;
+    env.rgba.reserve(values);
+    advise_huge_pages(env.rgba.data(), values * sizeof(float));
+    env.rgba.assign(values, 1.0f);
 
     RowChecker checker{path, env.source_width, channels, options.sanitize};
     auto store = [&](uint32_t y, auto value) {

@@ -7,6 +7,7 @@
 #include <functional>
 
 #include <facet/io/atomic_file.h>
+#include "core/huge_pages.h"
 #include "io/image_codecs.h"
 #include "io/image_module_loader.h"
 
@@ -85,7 +86,13 @@ Result<std::vector<uint8_t>> encode_hdr_image(const std::string& path, uint32_t 
                                               std::span<const float> rgba) {
     auto encoder = hdr_encoder(path, width, height, rgba);
     if (!encoder) return encoder.error();
+    // Room for the largest file (stored EXR chunks, or RGBE rows whose run-length coding
+    // grows them by a byte in 128) reserved and given huge pages before it is written.
+    const size_t texels = size_t(width) * height;
     std::vector<uint8_t> bytes;
+    bytes.reserve(lower_extension(path) == ".exr" ? texels * 16 + size_t(height) * 16 + 65536
+                                                   : texels * 4 + texels / 32 + size_t(height) * 8 + 1024);
+    advise_huge_pages(bytes.data(), bytes.capacity());
     codec::ByteSink sink(bytes);
     if (Status s = (*encoder)(sink); !s) return Error{path + ": " + s.error().message};
     return bytes;
