@@ -165,6 +165,10 @@ TEST(ImageCodecs, ExrDecodesToEveryBitOfTheInput) {
             EXPECT_EQ(back.spec.get_string_attribute("compression"), "zip");
             EXPECT_EQ(back.spec.channelnames, (std::vector<std::string>{"R", "G", "B", "A"}));
             EXPECT_TRUE(same_bits(back.values, rgba)) << s.width << "x" << s.height << (smooth ? " smooth" : " random");
+            // Encoded in memory (a file made ahead of writing it): the same bytes.
+            auto encoded = encode_hdr_image(path, s.width, s.height, rgba);
+            ASSERT_TRUE(encoded) << encoded.error().message;
+            EXPECT_EQ(std::string(encoded->begin(), encoded->end()), read_file(path)) << s.width << "x" << s.height;
             // Both kinds of chunk: compressed when that shrinks it, stored otherwise.
             const std::vector<int32_t> sizes = exr_chunk_sizes(read_file(path), s.height);
             for (uint32_t k = 0; k < sizes.size(); ++k) {
@@ -179,6 +183,29 @@ TEST(ImageCodecs, ExrDecodesToEveryBitOfTheInput) {
     ASSERT_TRUE(write_hdr_image(dir.file("b.exr"), 64, 40, rgba));
     ASSERT_TRUE(write_hdr_image(dir.file("c.exr"), 64, 40, rgba));
     EXPECT_EQ(read_file(dir.file("b.exr")), read_file(dir.file("c.exr")));
+}
+
+// Radiance files encoded in memory are the bytes written to a file; anything but .exr and
+// .hdr is refused by name.
+TEST(ImageCodecs, HdrEncodedInMemoryIsTheFilesBytes) {
+    TempDir dir("image_codecs_memory");
+    for (Size s : kSizes) {
+        std::vector<float> rgba(size_t(s.width) * s.height * 4);
+        for (size_t i = 0; i < rgba.size(); ++i) rgba[i] = float((i * 7919) % 1000) * 0.37f;
+        const std::string path = dir.file("a.hdr");
+        ASSERT_TRUE(write_hdr_image(path, s.width, s.height, rgba));
+        auto encoded = encode_hdr_image(path, s.width, s.height, rgba);
+        ASSERT_TRUE(encoded) << encoded.error().message;
+        EXPECT_EQ(std::string(encoded->begin(), encoded->end()), read_file(path)) << s.width << "x" << s.height;
+    }
+    std::vector<float> rgba(4 * 4 * 4, 1.0f);
+    auto png = encode_hdr_image("preview.png", 4, 4, rgba);
+    ASSERT_FALSE(png);
+    EXPECT_NE(png.error().message.find("preview.png: HDR output must be .exr or .hdr"), std::string::npos)
+        << png.error().message;
+    auto short_buffer = encode_hdr_image("a.exr", 8, 4, rgba);
+    ASSERT_FALSE(short_buffer);
+    EXPECT_NE(short_buffer.error().message.find("a.exr"), std::string::npos) << short_buffer.error().message;
 }
 
 TEST(ImageCodecs, HdrDecodesAsOurReaderAndWithinRgbePrecision) {
