@@ -69,7 +69,9 @@ bool put_png_chunk(ByteSink& out, const char* type, const uint8_t* data, size_t 
 struct DeflateStream {
     z_stream z{};
     bool open = false;
-    explicit DeflateStream(int level) { open = deflateInit(&z, level) == Z_OK; }
+    DeflateStream(int level, int strategy) {
+        open = deflateInit2(&z, level, Z_DEFLATED, 15, 8, strategy) == Z_OK;
+    }
     ~DeflateStream() {
         if (open) deflateEnd(&z);
     }
@@ -88,7 +90,10 @@ Status write_png(ByteSink& out, uint32_t width, uint32_t height, const uint8_t* 
     store_be32(ihdr + 4, height);
     if (!put_bytes(out, signature, 8) || !put_png_chunk(out, "IHDR", ihdr, 13)) return write_failed();
 
-    DeflateStream deflate(1);
+    // Run-length matches only (Z_RLE): a tone-mapped photograph's Sub-filtered rows hold
+    // few longer matches. royal_esplanade_1k's 1024x512 preview 21 ms and 0.91 MB instead
+    // of 26 ms and 0.97 MB with zlib's default matching, builtin:sky's 21 KB instead of 29.
+    DeflateStream deflate(1, Z_RLE);
     if (!deflate.open) return Error{"zlib cannot start deflating (out of memory)"};
     z_stream& z = deflate.z;
     std::vector<uint8_t> idat(size_t(1) << 18);

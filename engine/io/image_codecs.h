@@ -33,7 +33,7 @@ private:
 
 // PNG (W3C, "Portable Network Graphics Specification", 2nd ed.): 8-bit RGBA with
 // straight alpha (colour type 6), rows top first, each row filtered with Sub (filter
-// type 1), deflated at zlib level 1.
+// type 1), deflated at zlib level 1 with run-length matches only (Z_RLE).
 Status write_png(ByteSink& out, uint32_t width, uint32_t height, const uint8_t* rgba);
 
 // OpenEXR ("OpenEXR File Layout"): one part of scanlines, channels A, B, G, R as 32-bit

@@ -29,8 +29,8 @@ Result<std::vector<uint8_t>> encode_hdr_image(const std::string& path, uint32_t 
 void preload_image_io();
 
 // 8-bit RGBA (already tone-mapped and encoded), straight alpha. Written atomically: a
-// .png by Facet's encoder (zlib level 1), any other extension (.jpg, .tif, ...) in the
-// format it names through the image module.
+// .png by Facet's encoder (zlib level 1, run-length matches), any other extension (.jpg,
+// .tif, ...) in the format it names through the image module.
 Status write_ldr_image(const std::string& path, uint32_t width, uint32_t height,
                        std::span<const uint8_t> rgba);
 
