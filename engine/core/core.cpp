@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <cstdio>
+#include <cstring>
 #include <mutex>
 #include <string>
 #include "core/huge_pages.h"
@@ -109,6 +110,26 @@ Hash64& Hash64::add(const void* data, std::size_t size) {
         state *= 0x100000001b3ull;
     }
     return *this;
+}
+
+Hash64& Hash64::add_bulk(const void* data, std::size_t size) {
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    // Each lane: xor in a word, multiply by an odd constant, xor-shift (both bijective, so
+    // a changed word changes its lane's state for good).
+    std::uint64_t lanes[4] = {state, state ^ 0x9e3779b97f4a7c15ull, state ^ 0xbf58476d1ce4e5b9ull,
+                              state ^ 0x94d049bb133111ebull};
+    std::size_t i = 0;
+    for (; i + 32 <= size; i += 32)
+        for (int l = 0; l < 4; ++l) {
+            std::uint64_t word;
+            std::memcpy(&word, bytes + i + 8 * l, 8);
+            std::uint64_t x = (lanes[l] ^ word) * 0xbf58476d1ce4e5b9ull;
+            lanes[l] = x ^ (x >> 31);
+        }
+    add(lanes, sizeof lanes);
+    add(bytes + i, size - i);
+    const std::uint64_t length = size;
+    return add(&length, sizeof length);
 }
 
 std::string Hash64::hex() const {

@@ -131,7 +131,7 @@ Result<EnvironmentImage> decode_environment(const std::string& path, uint64_t w,
 
     Hash64 hash;
     hash.add(&env.width, sizeof env.width).add(&env.height, sizeof env.height);
-    hash.add(env.rgba.data(), env.rgba.size() * sizeof(float));
+    hash.add_bulk(env.rgba.data(), env.rgba.size() * sizeof(float));
     env.content_hash = hash.hex();
     return env;
 }

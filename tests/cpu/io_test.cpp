@@ -6,8 +6,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <vector>
 
+#include <facet/core/hash.h>
 #include <facet/io/atomic_file.h>
 #include <facet/io/image_io.h>
 #include <facet/io/json_writer.h>
@@ -118,6 +120,28 @@ TEST(AtomicFile, EnsureDirectoryReportsAFileInTheWay) {
     ASSERT_FALSE(status);
     EXPECT_NE(status.error().message.find("not a directory"), std::string::npos);
     EXPECT_TRUE(ensure_directory((dir.path / "a/b/c").string()));
+}
+
+// Hash64::add_bulk (environments' content hashes): the same bytes the same value; every
+// one-bit change of a buffer (in whole 32-byte groups and in the tail), a byte more, or
+// FNV's add() of the same bytes gives another.
+TEST(Hash64, BulkHashSeesEveryBitAndTheLength) {
+    std::vector<unsigned char> bytes(1000);
+    for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<unsigned char>((i * 131) >> 3);
+    auto bulk = [](const std::vector<unsigned char>& b) { return Hash64{}.add_bulk(b.data(), b.size()).value(); };
+    const uint64_t original = bulk(bytes);
+    EXPECT_EQ(bulk(bytes), original);
+    EXPECT_NE(Hash64{}.add(bytes.data(), bytes.size()).value(), original);
+    std::set<uint64_t> seen{original};
+    for (size_t i = 0; i < bytes.size(); ++i)
+        for (int bit = 0; bit < 8; ++bit) {
+            bytes[i] ^= static_cast<unsigned char>(1u << bit);
+            EXPECT_TRUE(seen.insert(bulk(bytes)).second) << "byte " << i << " bit " << bit;
+            bytes[i] ^= static_cast<unsigned char>(1u << bit);
+        }
+    EXPECT_EQ(seen.size(), 1u + bytes.size() * 8);
+    bytes.push_back(0);
+    EXPECT_EQ(seen.count(bulk(bytes)), 0u) << "a trailing zero byte";
 }
 
 TEST(JsonWriter, WritesNestedValuesAndEscapes) {
