@@ -113,13 +113,19 @@ Equirect downsample(const Equirect& e, uint32_t f) {
 }
 
 Vec3 irradiance_over_pi(const Equirect& e, const Vec3& n) {
+    // Every row shares its columns' angles: their cosines and sines once, not per texel.
+    std::vector<double> cos_phi(e.w), sin_phi(e.w);
+    for (uint32_t x = 0; x < e.w; ++x) {
+        const double phi = ((x + 0.5) / e.w - 0.5) * 2 * pi;
+        cos_phi[x] = std::cos(phi);
+        sin_phi[x] = std::sin(phi);
+    }
     Vec3 sum{0, 0, 0};
     for (uint32_t y = 0; y < e.h; ++y) {
         const double dw = equirect_texel_solid_angle(y, e.w, e.h);
         const double theta = pi * (0.5 - (y + 0.5) / e.h), ct = std::cos(theta), st = std::sin(theta);
         for (uint32_t x = 0; x < e.w; ++x) {
-            const double phi = ((x + 0.5) / e.w - 0.5) * 2 * pi;
-            const double c = n[0] * ct * std::cos(phi) + n[1] * st + n[2] * ct * std::sin(phi);
+            const double c = n[0] * ct * cos_phi[x] + n[1] * st + n[2] * ct * sin_phi[x];
             if (c <= 0) continue;
             const float* t = e.at(x, y);
             for (int k = 0; k < 3; ++k) sum[k] += t[k] * c * dw;
