@@ -1,6 +1,7 @@
 #include <facet/reference/final_image_truth.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -194,12 +195,20 @@ double sheen_albedo_integral(double mu, double roughness) {
     const double alpha = sheen_alpha(roughness), k = 1 / alpha + 2;
     const double vx = std::sqrt(std::max(1 - mu * mu, 0.0)), lv = sheen_lambda(mu, alpha);
     constexpr int nw = 512, nphi = 128;
+    // cos(phi) of each column, the same for every row and every node.
+    static const std::array<double, nphi> cos_phi = [] {
+        std::array<double, nphi> c{};
+        for (int j = 0; j < nphi; ++j) {
+            const double phi = (j + 0.5) / nphi * pi;  // the integrand is symmetric about the plane of n and v
+            c[size_t(j)] = std::cos(phi);
+        }
+        return c;
+    }();
     double total = 0;
     for (int i = 0; i < nw; ++i) {
         const double u = std::pow((i + 0.5) / nw, 1 / k), n_h = std::sqrt(std::max(1 - u * u, 0.0));
         for (int j = 0; j < nphi; ++j) {
-            const double phi = (j + 0.5) / nphi * pi;  // the integrand is symmetric about the plane of n and v
-            const double v_h = vx * u * std::cos(phi) + mu * n_h, n_l = 2 * v_h * n_h - mu;
+            const double v_h = vx * u * cos_phi[size_t(j)] + mu * n_h, n_l = 2 * v_h * n_h - mu;
             if (v_h <= 0 || n_l <= 0) continue;
             total += v_h / ((1 + lv + sheen_lambda(n_l, alpha)) * mu * n_h);
         }
