@@ -1,6 +1,7 @@
 #include <facet/reference/final_image_truth.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -56,66 +57,113 @@ double f0_between(double a, double b) {
     return r * r;
 }
 
+// thin_film_fresnel in two steps, so that the glTF model's two Fresnel terms (the
+// dielectric's and the metal's, over different bases at the same v.h) share what depends
+// on the film and the angle alone: Snell's law, the first interface and the Gaussians'
+// decay, and each interference term's cosine where the two bases shift its phase alike.
+// The sum is the same expression, term for term, as one thin_film_fresnel call.
+class ThinFilm {
+public:
+    ThinFilm(double outside_ior, double film_ior, double cos1, double thickness_nm) {
+        // Below 30 nm the film's index tends to the outside's, smoothly (Hermite smoothstep).
+        const double t = std::clamp(thickness_nm / 30.0, 0.0, 1.0);
+        film_ = outside_ior + (film_ior - outside_ior) * t * t * (3 - 2 * t);
+        // Snell's law into the film.
+        const double sin2_sq = (outside_ior / film_) * (outside_ior / film_) * (1 - cos1 * cos1);
+        total_reflection_ = sin2_sq >= 1;
+        if (total_reflection_) return;
+        cos2_ = std::sqrt(1 - sin2_sq);
+        R12_ = schlick(f0_between(film_, outside_ior), cos1);
+        T121_ = 1 - R12_;
+        // Reflection off a denser medium shifts the phase by pi (phi21 = pi - phi12).
+        phi21_ = film_ < outside_ior ? 0.0 : pi;
+        // Optical path difference of one round trip through the film, in nm.
+        const double opd = 2 * film_ * thickness_nm * cos2_;
+        for (int order = 1; order <= 2; ++order) {
+            const double phase = 2 * pi * order * opd * 1e-9;
+            phase_[order - 1] = phase;
+            for (size_t k = 0; k < 3; ++k) decay_[order - 1][k] = std::exp(-phase * phase * variance[k]);
+            decay_[order - 1][3] = std::exp(-second_x_variance * phase * phase);
+        }
+    }
+
+    // The film's reflectance over a base of normal-incidence reflectance base_f0.
+    Vec3 reflectance(const Vec3& base_f0) {
+        if (total_reflection_) return {1, 1, 1};
+        Vec3 out{};
+        Vec3 R23{};
+        bool shifted[3];  // the base's index below the film's: a further pi
+        for (size_t c = 0; c < 3; ++c) {
+            const double s = std::sqrt(std::clamp(base_f0[c], 0.0, 0.9999));
+            const double base_ior = (1 + s) / (1 - s);
+            R23[c] = schlick(f0_between(base_ior, film_), cos2_);
+            shifted[c] = base_ior < film_;
+        }
+        // Per order m: cos(m (2 pi opd / lambda) + m phi) integrated against each matching
+        // function. The extension's definition pairs the three channels' phase shifts with X, Y
+        // and Z in that order (they differ only where the base's index is below the film's in
+        // some channels and not others), and so does this.
+        Vec3 sensitivity[2];
+        for (int order = 1; order <= 2; ++order) {
+            double xyz[3];
+            for (size_t k = 0; k < 3; ++k)
+                xyz[k] = amplitude[k] * std::sqrt(2 * pi * variance[k]) * cosine(order, k, shifted[k]) *
+                         decay_[order - 1][k];
+            xyz[0] += second_x_amplitude * std::sqrt(2 * pi * second_x_variance) * cosine(order, 3, shifted[0]) *
+                      decay_[order - 1][3];
+            for (double& x : xyz) x /= 1.0685e-7;
+            for (size_t c = 0; c < 3; ++c)
+                sensitivity[order - 1][c] = to_rgb[c][0] * xyz[0] + to_rgb[c][1] * xyz[1] + to_rgb[c][2] * xyz[2];
+        }
+        for (size_t c = 0; c < 3; ++c) {
+            const double R123 = std::clamp(R12_ * R23[c], 1e-5, 0.9999), r123 = std::sqrt(R123);
+            const double Rs = T121_ * T121_ * R23[c] / (1 - R123);
+            double I = R12_ + Rs, Cm = Rs - T121_;
+            for (int order = 1; order <= 2; ++order) {
+                Cm *= r123;
+                I += Cm * 2 * sensitivity[order - 1][c];
+            }
+            out[c] = std::max(I, 0.0);
+        }
+        return out;
+    }
+
+private:
+    // The CIE 1931 matching functions as Gaussians (three for XYZ and a second lobe of X),
+    // each Fourier-transformed: amplitude, centre and variance in the frequency domain.
+    static constexpr double amplitude[3] = {5.4856e-13, 4.4201e-13, 5.2481e-13};
+    static constexpr double centre[4] = {1.6810e+06, 1.7953e+06, 2.2084e+06, 2.2399e+06};
+    static constexpr double variance[3] = {4.3278e+09, 9.3046e+09, 6.6121e+09};
+    static constexpr double second_x_amplitude = 9.7470e-14, second_x_variance = 4.5282e+09;
+    // Rec. 709 from XYZ (rows).
+    static constexpr double to_rgb[3][3] = {{3.2404542, -1.5371385, -0.4985314},
+                                            {-0.9692660, 1.8760108, 0.0415560},
+                                            {0.0556434, -0.2040259, 1.0572252}};
+
+    // cos(centre phase + m phase shift) of Gaussian `lobe` (3: X's second), computed once
+    // per order, lobe and shift.
+    double cosine(int order, size_t lobe, bool shifted) {
+        double& memo = cosines_[order - 1][lobe][shifted];
+        if (!known_[order - 1][lobe][shifted]) {
+            const double phase_shift = phi21_ + (shifted ? pi : 0.0);
+            memo = std::cos(centre[lobe] * phase_[order - 1] + order * phase_shift);
+            known_[order - 1][lobe][shifted] = true;
+        }
+        return memo;
+    }
+
+    bool total_reflection_ = false;
+    double film_ = 0, cos2_ = 0, R12_ = 0, T121_ = 0, phi21_ = 0;
+    double phase_[2] = {};
+    double decay_[2][4] = {};  // exp(-phase^2 variance) per order and lobe
+    double cosines_[2][4][2] = {};
+    bool known_[2][4][2] = {};
+};
+
 }  // namespace
 
 Vec3 thin_film_fresnel(double outside_ior, double film_ior, double cos1, double thickness_nm, const Vec3& base_f0) {
-    // Below 30 nm the film's index tends to the outside's, smoothly (Hermite smoothstep).
-    const double t = std::clamp(thickness_nm / 30.0, 0.0, 1.0);
-    const double film = outside_ior + (film_ior - outside_ior) * t * t * (3 - 2 * t);
-    // Snell's law into the film.
-    const double sin2_sq = (outside_ior / film) * (outside_ior / film) * (1 - cos1 * cos1);
-    if (sin2_sq >= 1) return {1, 1, 1};
-    const double cos2 = std::sqrt(1 - sin2_sq);
-    const double R12 = schlick(f0_between(film, outside_ior), cos1), T121 = 1 - R12;
-    // Reflection off a denser medium shifts the phase by pi (phi21 = pi - phi12).
-    const double phi21 = film < outside_ior ? 0.0 : pi;
-    // Optical path difference of one round trip through the film, in nm.
-    const double opd = 2 * film * thickness_nm * cos2;
-    // The CIE 1931 matching functions as Gaussians (three for XYZ and a second lobe of X),
-    // each Fourier-transformed: amplitude, centre and variance in the frequency domain.
-    constexpr double amplitude[3] = {5.4856e-13, 4.4201e-13, 5.2481e-13};
-    constexpr double centre[3] = {1.6810e+06, 1.7953e+06, 2.2084e+06};
-    constexpr double variance[3] = {4.3278e+09, 9.3046e+09, 6.6121e+09};
-    // Rec. 709 from XYZ (rows).
-    constexpr double to_rgb[3][3] = {{3.2404542, -1.5371385, -0.4985314},
-                                     {-0.9692660, 1.8760108, 0.0415560},
-                                     {0.0556434, -0.2040259, 1.0572252}};
-    Vec3 out{};
-    Vec3 R23{}, phase_shift{};
-    for (size_t c = 0; c < 3; ++c) {
-        const double s = std::sqrt(std::clamp(base_f0[c], 0.0, 0.9999));
-        const double base_ior = (1 + s) / (1 - s);
-        R23[c] = schlick(f0_between(base_ior, film), cos2);
-        phase_shift[c] = phi21 + (base_ior < film ? pi : 0.0);
-    }
-    // Per order m: cos(m (2 pi opd / lambda) + m phi) integrated against each matching
-    // function. The extension's definition pairs the three channels' phase shifts with X, Y
-    // and Z in that order (they differ only where the base's index is below the film's in
-    // some channels and not others), and so does this.
-    Vec3 sensitivity[2];
-    for (int order = 1; order <= 2; ++order) {
-        const double phase = 2 * pi * order * opd * 1e-9;
-        double xyz[3];
-        for (size_t k = 0; k < 3; ++k)
-            xyz[k] = amplitude[k] * std::sqrt(2 * pi * variance[k]) * std::cos(centre[k] * phase + order * phase_shift[k]) *
-                     std::exp(-phase * phase * variance[k]);
-        xyz[0] += 9.7470e-14 * std::sqrt(2 * pi * 4.5282e+09) * std::cos(2.2399e+06 * phase + order * phase_shift[0]) *
-                  std::exp(-4.5282e+09 * phase * phase);
-        for (double& x : xyz) x /= 1.0685e-7;
-        for (size_t c = 0; c < 3; ++c)
-            sensitivity[order - 1][c] = to_rgb[c][0] * xyz[0] + to_rgb[c][1] * xyz[1] + to_rgb[c][2] * xyz[2];
-    }
-    for (size_t c = 0; c < 3; ++c) {
-        const double R123 = std::clamp(R12 * R23[c], 1e-5, 0.9999), r123 = std::sqrt(R123);
-        const double Rs = T121 * T121 * R23[c] / (1 - R123);
-        double I = R12 + Rs, Cm = Rs - T121;
-        for (int order = 1; order <= 2; ++order) {
-            Cm *= r123;
-            I += Cm * 2 * sensitivity[order - 1][c];
-        }
-        out[c] = std::max(I, 0.0);
-    }
-    return out;
+    return ThinFilm(outside_ior, film_ior, cos1, thickness_nm).reflectance(base_f0);
 }
 
 
@@ -147,12 +195,20 @@ double sheen_albedo_integral(double mu, double roughness) {
     const double alpha = sheen_alpha(roughness), k = 1 / alpha + 2;
     const double vx = std::sqrt(std::max(1 - mu * mu, 0.0)), lv = sheen_lambda(mu, alpha);
     constexpr int nw = 512, nphi = 128;
+    // cos(phi) of each column, the same for every row and every node.
+    static const std::array<double, nphi> cos_phi = [] {
+        std::array<double, nphi> c{};
+        for (int j = 0; j < nphi; ++j) {
+            const double phi = (j + 0.5) / nphi * pi;  // the integrand is symmetric about the plane of n and v
+            c[size_t(j)] = std::cos(phi);
+        }
+        return c;
+    }();
     double total = 0;
     for (int i = 0; i < nw; ++i) {
         const double u = std::pow((i + 0.5) / nw, 1 / k), n_h = std::sqrt(std::max(1 - u * u, 0.0));
         for (int j = 0; j < nphi; ++j) {
-            const double phi = (j + 0.5) / nphi * pi;  // the integrand is symmetric about the plane of n and v
-            const double v_h = vx * u * std::cos(phi) + mu * n_h, n_l = 2 * v_h * n_h - mu;
+            const double v_h = vx * u * cos_phi[size_t(j)] + mu * n_h, n_l = 2 * v_h * n_h - mu;
             if (v_h <= 0 || n_l <= 0) continue;
             total += v_h / ((1 + lv + sheen_lambda(n_l, alpha)) * mu * n_h);
         }
@@ -309,8 +365,9 @@ Vec3 layer_brdf_cos(BrdfModel model, const TruthMaterial& m, const Vec3& n, cons
         }
         if (m.iridescence > 0) {
             // KHR_materials_iridescence: each Fresnel term mixed with the film's over the same base.
-            const Vec3 film_d = thin_film_fresnel(outside, m.iridescence_ior, v_h, m.iridescence_thickness, f0s);
-            const Vec3 film_m = thin_film_fresnel(outside, m.iridescence_ior, v_h, m.iridescence_thickness, m.albedo);
+            ThinFilm film(outside, m.iridescence_ior, v_h, m.iridescence_thickness);
+            const Vec3 film_d = film.reflectance(f0s);
+            const Vec3 film_m = film.reflectance(m.albedo);
             for (size_t c = 0; c < 3; ++c) {
                 Fd[c] += m.iridescence * (film_d[c] - Fd[c]);
                 Fm[c] += m.iridescence * (film_m[c] - Fm[c]);

@@ -189,11 +189,19 @@ Result<std::unique_ptr<RenderSession>> RenderSession::create(Context& context, c
     // A frame the device cannot hold fails before the model is uploaded and the lighting baked.
     if (Status fits = check_frame_fits(context, s->frame); !fits) return fits.error();
 
-    ShaderCompilerOptions compiler_options;
-    compiler_options.source_dir = job.shader_dir;
-    compiler_options.disk_cache_dir = job.shader_cache_dir;
-    s->compiler = std::make_unique<ShaderCompiler>(compiler_options);
-    s->programs = std::make_unique<ProgramCache>(context, *s->compiler);
+    if (job.programs) {
+        // The caller's pipelines: its Vulkan objects must belong to this session's device.
+        if (&job.programs->context() != &context)
+            return Error{"RenderJob::programs: the pipeline cache belongs to another Vulkan context"};
+        s->programs = job.programs;
+    } else {
+        ShaderCompilerOptions compiler_options;
+        compiler_options.source_dir = job.shader_dir;
+        compiler_options.disk_cache_dir = job.shader_cache_dir;
+        s->compiler = std::make_unique<ShaderCompiler>(compiler_options);
+        s->own_programs = std::make_unique<ProgramCache>(context, *s->compiler);
+        s->programs = s->own_programs.get();
+    }
     // With a saved bake (--ibl DIR) the environment is the bake's: job.env is not read.
     const bool saved_bake = !job.ibl_dir.empty();
     if (!saved_bake && job.env != "none") {

@@ -22,8 +22,9 @@ struct RenderSession::State {
     RenderJob job;
     Scene scene;
     std::optional<EnvironmentSource> env;
-    std::unique_ptr<ShaderCompiler> compiler;
-    std::unique_ptr<ProgramCache> programs;
+    std::unique_ptr<ShaderCompiler> compiler;    // the session's own (none with a shared cache)
+    std::unique_ptr<ProgramCache> own_programs;  // likewise
+    ProgramCache* programs = nullptr;            // own_programs, or RenderJob::programs (the caller's)
     std::optional<BakedEnvironment> baked;  // the image-based lighting (nothing without an environment)
     IblSettings ibl_settings;               // as baked
     std::vector<PassTiming> bake_timings;

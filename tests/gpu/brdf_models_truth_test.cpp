@@ -47,8 +47,10 @@ struct SunSkyFile {
     ~SunSkyFile() { std::filesystem::remove(path); }
 };
 
+// Every session of the suite draws with the shared pipelines (each variant built once).
 RenderJob spheres_job(BrdfModel model, const std::string& env) {
     RenderJob job;
+    job.programs = &test::gpu_programs();
     job.model = "builtin:spheres";
     job.env = env;
     job.frame.width = job.frame.height = 256;
@@ -639,6 +641,7 @@ TEST(BrdfModelsTruth, SheenOverAWhiteBaseKeepsTheEnergyInTheFurnace) {
     const test::TexelLights uniform = test::texel_lights(test::uniform_sky(128, 64, 1.0f));
     for (BrdfModel model : {BrdfModel::gltf, BrdfModel::thesis}) {
         RenderJob job;
+        job.programs = &test::gpu_programs();
         job.model = "builtin:sphere";
         job.env = "builtin:white";
         job.env_width = 128;  // uniform: the figures below are the same as from the default 1024

@@ -18,7 +18,9 @@
 #include <facet/render/render_job.h>
 #include <facet/scene/builtin_scenes.h>
 #include "io/equirect.h"
+#include <facet/shader/program_cache.h>
 #include "support/gpu_test.h"
+#include "support/tiny_session.h"
 
 namespace facet {
 namespace {
@@ -72,8 +74,10 @@ SphereDifference sphere_difference(const RenderedImages& a, const RenderedImages
 
 class ForwardRenderTest : public test::GpuTest {
 protected:
+    // The suite's sessions share the test process' pipelines (RenderJob::programs).
     RenderJob small_job(const std::string& model, const std::string& env) {
         RenderJob job;
+        job.programs = &test::gpu_programs();
         job.model = model;
         job.env = env;
         job.env_width = 64;
@@ -759,6 +763,49 @@ TEST_F(ForwardRenderTest, GraphHoldsOnlyWhatTheFrameNeeds) {
     job.preset = "gold";
     images = render(job, &session);
     for (const PassTiming& t : session->bake_timings()) EXPECT_EQ(t.name.find("irradiance"), std::string::npos) << t.name;
+}
+
+// RenderJob::programs: sessions sharing a caller's ProgramCache draw what sessions with
+// their own draw, pixel for pixel; a second session builds no pipeline (its compiler is
+// asked for nothing); reload_shaders() from either rebuilds the whole cache, after which
+// both still draw the same frame; a cache of another context is refused.
+TEST_F(ForwardRenderTest, SessionsSharingAProgramCacheBuildEachPipelineOnce) {
+    ShaderCompiler compiler;
+    ProgramCache programs(ctx(), compiler);
+    RenderJob own = small_job("builtin:sphere", "builtin:sky");
+    own.programs = nullptr;
+    RenderJob shared = own;
+    shared.programs = &programs;
+    auto asked = [&] {
+        const ShaderCompiler::Stats s = compiler.stats();
+        return s.memory_hits + s.disk_hits + s.compiles;
+    };
+    std::unique_ptr<RenderSession> first, second;
+    const RenderedImages alone = render(own);
+    const RenderedImages a = render(shared, &first);
+    ASSERT_EQ(&first->programs(), &programs);
+    const uint32_t after_first = asked();
+    EXPECT_GT(after_first, 0u);
+    const RenderedImages b = render(shared, &second);
+    EXPECT_EQ(asked(), after_first) << "the second session built pipelines of its own";
+    EXPECT_EQ(a.hdr, alone.hdr);
+    EXPECT_EQ(b.hdr, alone.hdr);
+
+    auto reloaded = second->reload_shaders();
+    ASSERT_TRUE(reloaded) << reloaded.error().message;
+    EXPECT_GT(*reloaded, 1u);  // the bake's compute pipelines and the frame's, every session's
+    EXPECT_GT(asked(), after_first);
+    for (RenderSession* s : {first.get(), second.get()}) {
+        auto frame = s->render_frame();
+        ASSERT_TRUE(frame) << frame.error().message;
+        EXPECT_EQ(frame->hdr, alone.hdr);
+    }
+
+    auto other = test::own_context();
+    ASSERT_TRUE(other);
+    auto refused = RenderSession::create(*other, shared);
+    ASSERT_FALSE(refused);
+    EXPECT_NE(refused.error().message.find("RenderJob::programs"), std::string::npos) << refused.error().message;
 }
 
 // No specular level below the smallest roughness in use is computed, and the image is

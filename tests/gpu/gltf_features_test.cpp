@@ -90,7 +90,12 @@ class GltfFeaturesTest : public GpuTest {
 protected:
     GltfTempDir dir{"gltf_features"};
 
-    RenderJob job(const std::string& env) { return head_on_job(env, kSize); }
+    // The suite's sessions share the test process' pipelines (each variant built once).
+    RenderJob job(const std::string& env) {
+        RenderJob j = head_on_job(env, kSize);
+        j.programs = &gpu_programs();
+        return j;
+    }
     // Loads `path`, makes every material Lambert-only (metallic 0, no specular lobe: the
     // white furnace then shows albedo exactly), and renders it.
     RenderedImages render(const std::string& path, RenderJob job, bool lambert = true,

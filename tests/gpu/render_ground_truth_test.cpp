@@ -57,6 +57,7 @@ struct Rendered {
 
 Rendered render_spheres(const std::string& env_path, const std::function<void(RenderJob&)>& configure = {}) {
     RenderJob job;
+    job.programs = &test::gpu_programs();  // the suite's pipelines, each built once
     job.model = "builtin:spheres";
     job.env = env_path;
     job.frame.width = job.frame.height = 280;

@@ -32,6 +32,7 @@ double tolerance(double measured) { return std::max(0.015, 0.25 * measured); }
 ShadingChoice predicted_against_measured(ShadingMethod shading, BrdfModel model, double target_error = 0.03,
                                          std::array<bool, 8>* two_lookup_groups = nullptr) {
     RenderJob job;
+    job.programs = &test::gpu_programs();  // the suite's pipelines, each built once
     job.target_error = target_error;
     job.model = "builtin:spheres";
     job.env = "builtin:sky";

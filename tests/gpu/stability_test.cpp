@@ -288,6 +288,7 @@ TEST_F(StabilityTest, ShadingAtRoughnessZeroAndGrazingAnglesStaysFinite) {
     ASSERT_TRUE(write_hdr_image(black.path, black_env.w, black_env.h, black_env.rgba));
     auto check = [&](const Scene& drawn, BrdfModel model, const std::string& env, ShadingMethod method) {
         RenderJob job;
+        job.programs = &test::gpu_programs();  // each variant's pipeline built once, for every case
         job.env = env;
         job.env_width = 128;
         job.max_env_width = 256;
@@ -316,7 +317,7 @@ TEST_F(StabilityTest, ShadingAtRoughnessZeroAndGrazingAnglesStaysFinite) {
         };
         auto session = RenderSession::create(ctx(), orbit_job(elevations[0]), drawn);
         ASSERT_TRUE(session) << session.error().message;
-        // Both views from this session (its pipelines built once), the camera moved between
+        // Both views from this session (its graph's images made once), the camera moved between
         // frames; a session created for the second view takes that camera and the same choice.
         auto second = RenderSession::create(ctx(), orbit_job(elevations[1]), drawn);
         ASSERT_TRUE(second) << second.error().message;

@@ -68,6 +68,7 @@ protected:
 
     RenderJob job() {
         RenderJob job = head_on_job("builtin:white", kSize);
+        job.programs = &gpu_programs();  // the suite's pipelines, each built once
         job.ibl.lut.size = 64;
         job.ibl.lut.sample_count = 1024;
         return job;

@@ -4,6 +4,8 @@
 #include <cstring>
 #include <memory>
 
+#include <facet/shader/program_cache.h>
+
 namespace facet::test {
 
 namespace {
@@ -11,6 +13,18 @@ namespace {
 std::unique_ptr<Context>& shared_context() {
     static std::unique_ptr<Context> context;
     return context;
+}
+
+// gpu_programs()'s cache and its compiler; made after the context, so that at exit too
+// (a test that never reached the teardown below) they go before it.
+struct SharedPrograms {
+    ShaderCompiler compiler;
+    ProgramCache programs;
+    explicit SharedPrograms(Context& context) : programs(context, compiler) {}
+};
+std::unique_ptr<SharedPrograms>& shared_programs() {
+    static std::unique_ptr<SharedPrograms> programs;
+    return programs;
 }
 
 // The shared context is destroyed after the last test of the process rather than at
@@ -22,6 +36,7 @@ public:
         std::unique_ptr<Context>& context = shared_context();
         if (!context) return;
         const uint32_t before = Context::process_validation_message_count();
+        shared_programs().reset();
         context.reset();
         EXPECT_EQ(Context::process_validation_message_count(), before)
             << "Vulkan objects left undestroyed at teardown (validation messages above)";
@@ -62,6 +77,17 @@ Context& gpu() {
         context = std::move(created).value();
     }
     return *context;
+}
+
+ProgramCache& gpu_programs() {
+    Context& context = gpu();
+    std::unique_ptr<SharedPrograms>& shared = shared_programs();
+    if (!shared) shared = std::make_unique<SharedPrograms>(context);
+    return shared->programs;
+}
+
+ProgramCache* shared_programs_for(const Context& context) {
+    return shared_context().get() == &context ? &gpu_programs() : nullptr;
 }
 
 void GpuTest::SetUp() {

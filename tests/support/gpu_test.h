@@ -10,6 +10,10 @@
 
 #include <facet/gpu/context.h>
 
+namespace facet {
+class ProgramCache;
+}
+
 namespace facet::test {
 
 // The one place tests turn the environment into context options (the library reads
@@ -30,6 +34,13 @@ T must(Result<T> result) {
 
 // The shared context (created on first use; a test that cannot get it fails).
 Context& gpu();
+// Pipelines on the shared context for every test of the executable that shares them
+// (RenderJob::programs, run_ibl): each shader variant is compiled and its pipeline created
+// once per process instead of once per session or pass. Embedded shaders, no disk cache;
+// destroyed just before the shared context. Not for tests that count the context's objects.
+ProgramCache& gpu_programs();
+// gpu_programs() when `context` is the shared context, else nullptr (creates neither).
+ProgramCache* shared_programs_for(const Context& context);
 
 class GpuTest : public ::testing::Test {
 protected:

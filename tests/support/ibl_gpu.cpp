@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <optional>
 
 #include <facet/gpu/context.h>
 #include <facet/gpu/transfer.h>
@@ -22,8 +23,16 @@ const Sampler* current_equirect_sampler = nullptr;
 const Sampler* run_ibl_equirect_sampler() { return current_equirect_sampler; }
 
 CubeLevels run_ibl(Context& context, const Equirect& e, const AddPasses& passes) {
-    ShaderCompiler compiler;
-    ProgramCache programs(context, compiler);
+    // The shared context's pipelines (built by the first call that needs each); a context
+    // of the test's own gets its own, gone with this call.
+    std::optional<ShaderCompiler> own_compiler;
+    std::optional<ProgramCache> own_programs;
+    ProgramCache* shared = shared_programs_for(context);
+    if (!shared) {
+        own_compiler.emplace();
+        own_programs.emplace(context, *own_compiler);
+    }
+    ProgramCache& programs = shared ? *shared : *own_programs;
     Sampler equirect_sampler = must(Sampler::create(context, VK_FILTER_LINEAR, false, true, "equirect"));
     Sampler cube_sampler = must(Sampler::create(context, VK_FILTER_LINEAR, true, false, "cube"));
     Buffer staging = must(

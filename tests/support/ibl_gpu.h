@@ -30,6 +30,7 @@ using AddPasses = std::function<ImageHandle(RenderGraph&, ProgramCache&, const S
 
 // Uploads `e`, builds the environment cube (face size h / 2, full mips), adds `passes`
 // (nullptr: read the environment cube itself), runs, and reads every level of the result.
+// On the shared context the pipelines are gpu_programs()' (support/gpu_test.h).
 CubeLevels run_ibl(Context& context, const Equirect& e, const AddPasses& passes = nullptr);
 // The sampler run_ibl built the cube with (linear, repeat in u): valid inside AddPasses.
 const Sampler* run_ibl_equirect_sampler();

@@ -60,6 +60,16 @@ struct RenderJob {
     LightExtractionSettings extraction;  // what counts as a light (ibl/light_extraction.h)
     std::string shader_dir;       // read shaders from here (hot reload); empty: embedded (programs: FACET_SHADER_DIR)
     std::string shader_cache_dir; // on-disk SPIR-V cache (apps/shader_cache.h); empty: none
+    // Pipelines shared with other sessions on the same Context (nullptr: the session compiles
+    // and builds its own, from shader_dir and shader_cache_dir, as every session used to).
+    // Each session's first frame otherwise creates every pipeline it draws with again: about
+    // 2-4 s on lavapipe for builtin:spheres with IBL. The caller owns the cache (and its
+    // ShaderCompiler, whose options then stand for shader_dir and shader_cache_dir, which
+    // are not read) and keeps it until the last session using it is destroyed; create()
+    // returns an Error for a cache of another Context. ProgramCache is not synchronised: the
+    // sessions sharing one are created and drawn from one thread at a time. Their
+    // reload_shaders() rebuilds the whole cache, every sharing session's pipelines with it.
+    ProgramCache* programs = nullptr;
     std::string ibl_dir;          // a saved bake (facet-bake's files) used instead of baking: `env` and the
                                   // bake's settings are then not read (the bake's input is the environment)
     std::string bake_cache_dir;   // bakes kept by bake key (facet/cache/directory_cache.h); empty: none
@@ -124,7 +134,8 @@ public:
     FrameSettings& frame_settings();
     // The pieces a host's own graph uses with the lower-level passes
     // (render/forward_renderer.h): the renderer (one frame slot), the scene on the GPU,
-    // the pipeline cache, and the baked images imported into `graph` (none without IBL).
+    // the pipeline cache (RenderJob::programs when shared), and the baked images imported
+    // into `graph` (none without IBL).
     ForwardRenderer& renderer();
     const GpuScene& gpu_scene() const;
     ProgramCache& programs();
@@ -141,6 +152,9 @@ public:
     Status override_materials(const std::optional<MaterialFactors>& factors);
     // Shader hot reload: every pipeline built again from the current sources, all or
     // nothing (a compile error keeps the last good ones and is returned). Between frames.
+    // With a shared cache (RenderJob::programs) that is every pipeline of the cache, so
+    // between the frames of every session sharing it: their pipelines are replaced in
+    // place (ProgramCache::reload), and none of them may have recorded work pending.
     Result<size_t> reload_shaders();
     // IBL methods this environment takes outside their domain (ibl/method_domain.h).
     const std::vector<std::string>& warnings() const;
