@@ -216,39 +216,10 @@ Status BakedEnvironment::stage(OutputSet& outputs, const std::string& dir, const
     auto in_background = [&](std::function<Status()> work) {
         writing.push_back(std::async(std::launch::async, std::move(work)));
     };
-    const std::string exr_path = staged("environment.exr");
-    std::string hdr_path;
-    if (!options.previews) remove_old("environment.hdr", no_previews);
-    else hdr_path = staged("environment.hdr");
-    if (encoded_ && encoded_->previews == options.previews) {
-        // Encoded ahead (BakeSettings::encoded_environment): only the bytes to write.
-        in_background([exr_path, hdr_path, encoded = encoded_]() -> Status {
-            if (Status s = write_binary_file(exr_path, encoded->exr); !s) return s;
-            if (!hdr_path.empty()) return write_binary_file(hdr_path, encoded->hdr);
-            return Ok{};
-        });
-    } else {
-        const Levels env_levels = read_levels(context, environment_, kBakedLayout);
-        std::vector<float> env(env_levels[0].size() / sizeof(float));
-        std::memcpy(env.data(), env_levels[0].data(), env.size() * sizeof(float));
-        in_background([exr_path, hdr_path, e, env = std::move(env)]() -> Status {
-            if (Status s = write_hdr_image(exr_path, e.width, e.height, env); !s) return s;
-            if (!hdr_path.empty()) return write_hdr_image(hdr_path, e.width, e.height, env);
-            return Ok{};
-        });
-    }
-    if (!options.previews) {
-        remove_old("environment.png", no_previews);
-    } else if (preview_) {
-        auto bytes = read_image(context, preview_, 0, 0, kBakedLayout);
-        if (!bytes) return bytes.error();
-        std::vector<uint8_t> rgba8(bytes->size());
-        std::memcpy(rgba8.data(), bytes->data(), bytes->size());
-        in_background([png_path = staged("environment.png"), e, rgba8 = std::move(rgba8)] {
-            return write_ldr_image(png_path, e.width, e.height, rgba8);
-        });
-    }
-    // The KTX2 files' images, read back in one submission, then written on second threads.
+    // Every image needed, read back in one submission; the files are then written from the
+    // mapped readback buffer on second threads.
+    const bool environment_encoded = encoded_ && encoded_->previews == options.previews;
+    const Image* preview_image = options.previews && preview_ ? &preview_ : nullptr;
     struct Ktx2Output {
         const char* name;
         const Image* image;
@@ -260,7 +231,39 @@ Status BakedEnvironment::stage(OutputSet& outputs, const std::string& dir, const
                                        {"brdf_lut.ktx2", lut(), "this bake has no BRDF LUT"}};
     std::vector<const Image*> images;
     for (const Ktx2Output& k : ktx2_outputs) images.push_back(k.image);
+    images.push_back(environment_encoded ? nullptr : &environment_);  // [4]
+    images.push_back(preview_image);                                   // [5]
     const ReadBack read = read_back(context, images, kBakedLayout);
+
+    const std::string exr_path = staged("environment.exr");
+    std::string hdr_path;
+    if (!options.previews) remove_old("environment.hdr", no_previews);
+    else hdr_path = staged("environment.hdr");
+    if (environment_encoded) {
+        // Encoded ahead (BakeSettings::encoded_environment): only the bytes to write.
+        in_background([exr_path, hdr_path, encoded = encoded_]() -> Status {
+            if (Status s = write_binary_file(exr_path, encoded->exr); !s) return s;
+            if (!hdr_path.empty()) return write_binary_file(hdr_path, encoded->hdr);
+            return Ok{};
+        });
+    } else {
+        in_background([exr_path, hdr_path, e, read]() -> Status {
+            const std::span<const std::byte> level = read.levels[4][0];
+            const std::span<const float> env(reinterpret_cast<const float*>(level.data()), level.size() / sizeof(float));
+            if (Status s = write_hdr_image(exr_path, e.width, e.height, env); !s) return s;
+            if (!hdr_path.empty()) return write_hdr_image(hdr_path, e.width, e.height, env);
+            return Ok{};
+        });
+    }
+    if (!options.previews) {
+        remove_old("environment.png", no_previews);
+    } else if (preview_image) {
+        in_background([png_path = staged("environment.png"), e, read] {
+            const std::span<const std::byte> level = read.levels[5][0];
+            return write_ldr_image(png_path, e.width, e.height,
+                                   {reinterpret_cast<const uint8_t*>(level.data()), level.size()});
+        });
+    }
     for (size_t i = 0; i < std::size(ktx2_outputs); ++i) {
         const Ktx2Output& k = ktx2_outputs[i];
         if (!k.image) {

@@ -32,8 +32,9 @@ std::vector<VkBufferImageCopy> level_regions(const ImageDesc& d, const std::vect
 }
 
 std::vector<VkDeviceSize> level_sizes(const ImageDesc& d) {
-    const VkDeviceSize texel = ktx2_texel_size(d.format);
-    if (texel == 0) throw UsageError("baked images are RGBA16F or RGBA32F");
+    // RGBA8: the tone-mapped preview.
+    const VkDeviceSize texel = d.format == VK_FORMAT_R8G8B8A8_UNORM ? 4 : ktx2_texel_size(d.format);
+    if (texel == 0) throw UsageError("baked images are RGBA16F, RGBA32F or (the preview) RGBA8");
     std::vector<VkDeviceSize> sizes;
     for (uint32_t m = 0; m < d.mip_levels; ++m)
         sizes.push_back(VkDeviceSize(d.mip_width(m)) * d.mip_height(m) * d.array_layers * texel);
