@@ -166,7 +166,8 @@ int run_accuracy(int argc, char** argv) {
     auto created = create_program_context();
     if (!created) return fail("cannot start Vulkan: " + created.error().message);
     Context& context = *created.value();
-    // Programs for materialising procedural environments (IblMeasure owns a compiler).
+    // Programs for materialising procedural environments (IblMeasure owns a compiler), and
+    // the pipelines every environment's sessions share (each created once, not per session).
     IblMeasure measure(context, 1, ShaderCompilerOptions{o.job.shader_dir, o.job.shader_cache_dir});
     std::vector<Measured> results;
     for (const std::string& name : o.envs) {
@@ -191,6 +192,7 @@ int run_accuracy(int argc, char** argv) {
                      texels.h, o.job.frame.width, o.job.frame.height, brdf_model_name(o.job.frame.brdf));
         RenderJob job = o.job;
         job.env = file.string();
+        job.programs = &measure.programs();
         job.frame.skybox = false;
         job.frame.views = {View::normal, View::position, View::basecolor, View::metallic, View::roughness};
         std::vector<RenderJob> jobs{job};
