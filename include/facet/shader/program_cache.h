@@ -53,7 +53,7 @@ public:
     // (the failed pipelines leave the cache: their pointers dangle). No pipeline of the batch may be bound before
     // finish() (Pipeline::bind throws). Graphics pipelines are made as before. One batch
     // at a time; reload() waits for the batch. The destructor finishes it if need be.
-    // On lavapipe with two cores, facet-bake's 14 pipelines take ~25 ms instead of ~45.
+    // facet-bake's 14 pipelines so (lavapipe, two cores): its whole process 0.48 s against 0.53.
     class Batch {
     public:
         explicit Batch(ProgramCache& cache);
