@@ -15,40 +15,17 @@ layout(binding = 2, rgba32f) uniform writeonly image2DArray mirror;
 #endif
 layout(push_constant) uniform Params { uint taps; } params;
 
-const float inv_two_pi = 1.0 / (2.0 * facet_pi);
-
 void main() {
     uint n = uint(imageSize(cube).x);
     uvec3 id = gl_GlobalInvocationID;
     if (id.x >= n || id.y >= n) return;
     vec3 sum = vec3(0.0);
     float taps = float(params.taps);
-    if (id.z == 2u || id.z == 3u) {
-        // +Y, -Y: d = (sc, +-1, +-tc); longitude atan2(d.z, d.x), latitude
-        // +-(pi/2 - atan(sqrt(sc^2 + tc^2))).
-        float sy = id.z == 2u ? 1.0 : -1.0;
-        for (uint j = 0u; j < params.taps; ++j) {
-            float tc = 2.0 * (float(id.y) + (float(j) + 0.5) / taps) / float(n) - 1.0;
-            for (uint i = 0u; i < params.taps; ++i) {
-                float sc = 2.0 * (float(id.x) + (float(i) + 0.5) / taps) / float(n) - 1.0;
-                float u = atan(sy * tc, sc) * inv_two_pi + 0.5;
-                float lat = sy * (0.5 * facet_pi - atan(sqrt(sc * sc + tc * tc)));
-                sum += textureLod(equirect, vec2(u, 0.5 - lat / facet_pi), 0.0).rgb;
-            }
-        }
-    } else {
-        // Side faces: d = (x(sc), -tc, z(sc)); the longitude depends on the column only,
-        // the latitude is atan2(-tc, sqrt(1 + sc^2)).
+    for (uint j = 0u; j < params.taps; ++j) {
         for (uint i = 0u; i < params.taps; ++i) {
-            float sc = 2.0 * (float(id.x) + (float(i) + 0.5) / taps) / float(n) - 1.0;
-            vec3 d = cube_direction(id.z, vec2(0.5 * (sc + 1.0), 0.5));
-            float u = atan(d.z, d.x) * inv_two_pi + 0.5;
-            float h = sqrt(1.0 + sc * sc);
-            for (uint j = 0u; j < params.taps; ++j) {
-                float tc = 2.0 * (float(id.y) + (float(j) + 0.5) / taps) / float(n) - 1.0;
-                float lat = atan(-tc, h);
-                sum += textureLod(equirect, vec2(u, 0.5 - lat / facet_pi), 0.0).rgb;
-            }
+            vec2 st = (vec2(id.xy) + (vec2(i, j) + 0.5) / taps) / float(n);
+            vec3 d = normalize(cube_direction(id.z, st));
+            sum += textureLod(equirect, equirect_uv(d), 0.0).rgb;
         }
     }
     vec4 texel = vec4(sum / (taps * taps), 1.0);
