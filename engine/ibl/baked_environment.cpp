@@ -124,7 +124,7 @@ Outputs run_bake_graph(Context& context, ProgramCache& programs, const Environme
     graph.export_buffer(ranges, read_back);
     if (images.sh9.valid()) graph.export_buffer(images.sh9, read_back);
     // The conversion of the outputs to RGBA16F after the run, compiled with the others.
-    if (settings.format == VK_FORMAT_R16G16B16A16_SFLOAT) check(programs.compute("ibl/to_half.comp"));
+    if (settings.format == VK_FORMAT_R16G16B16A16_SFLOAT) check(half_conversion_program(programs));
     if (Status made = pipelines.finish(); !made) throw made.error();
     CompiledGraph compiled = graph.compile();
     if (cb.graph_dot) cb.graph_dot(compiled.to_dot());

@@ -90,10 +90,14 @@ std::vector<OutputRange> read_output_ranges(Context& context, const Buffer& rang
     return out;
 }
 
+Result<const Pipeline*> half_conversion_program(ProgramCache& programs) {
+    return programs.compute("ibl/to_half.comp");
+}
+
 std::vector<Image> convert_to_half(ProgramCache& programs, std::span<Image* const> rgba32f, VkImageLayout layout,
                                    std::span<const std::string> names) {
     Context& context = programs.context();
-    const Pipeline* convert = or_throw(programs.compute("ibl/to_half.comp"));
+    const Pipeline* convert = or_throw(half_conversion_program(programs));
     std::vector<Image> halves;
     // The views are made before recording (the images keep them).
     std::vector<std::vector<std::pair<VkImageView, VkImageView>>> views(rgba32f.size());

@@ -17,6 +17,7 @@ namespace facet {
 
 class Buffer;
 class Context;
+class Pipeline;
 class ProgramCache;
 
 // One output of the bake's graph to check: the levels from `first_level` on count.
@@ -40,6 +41,9 @@ struct OutputRange {
     uint64_t bad = 0;  // NaN, Inf or negative values
 };
 std::vector<OutputRange> read_output_ranges(Context& context, const Buffer& ranges, size_t count);
+
+// The pipeline convert_to_half runs (a bake asks for it with its passes' batch).
+Result<const Pipeline*> half_conversion_program(ProgramCache& programs);
 
 // Copies of `rgba32f`'s images (every level and layer, in `layout`, made with storage use)
 // in RGBA16F, made by compute passes in one submission (ibl/to_half.comp: each value

@@ -7,13 +7,15 @@
 
 namespace facet {
 
-Result<const Pipeline*> ProgramCache::get(const std::string& key, std::function<Result<Pipeline>()> build) {
+Result<const Pipeline*> ProgramCache::get(const std::string& key, std::function<Result<Pipeline>()> build,
+                                          const std::function<Result<Pipeline>()>& first) {
     if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second.pipeline.get();
-    auto built = build();
+    auto built = first ? first() : build();
     if (!built) return built.error();
     Entry entry{std::make_unique<Pipeline>(std::move(built).value()), std::move(build)};
-    const Pipeline* result = entry.pipeline.get();
+    Pipeline* result = entry.pipeline.get();
     pipelines_.emplace(key, std::move(entry));
+    if (first) batch_->add(key, result);
     return result;
 }
 
@@ -21,22 +23,16 @@ Result<const Pipeline*> ProgramCache::compute(const std::string& shader, std::sp
     std::string key = shader;
     for (const ShaderDefine& d : defines) key += "|" + d.name + "=" + d.value;
     std::vector<ShaderDefine> define_list(defines.begin(), defines.end());
-    auto build = [this, shader, define_list]() -> Result<Pipeline> {
+    // In a batch the driver's compilation (Pipeline::create_compute) goes to its workers.
+    auto make = [this, shader, define_list](bool deferred) -> Result<Pipeline> {
         auto spirv = compiler_.compile(ShaderStage::compute, shader, define_list);
         if (!spirv) return spirv.error();
-        return Pipeline::compute(context_, spirv->words, shader);
+        return deferred ? Pipeline::compute_deferred(context_, spirv->words, shader)
+                        : Pipeline::compute(context_, spirv->words, shader);
     };
-    if (!batch_ || pipelines_.count(key)) return get(key, std::move(build));
-    // In a batch: the driver's compilation goes to the batch's workers.
-    auto spirv = compiler_.compile(ShaderStage::compute, shader, define_list);
-    if (!spirv) return spirv.error();
-    auto deferred = Pipeline::compute_deferred(context_, spirv->words, shader);
-    if (!deferred) return deferred.error();
-    Entry entry{std::make_unique<Pipeline>(std::move(deferred).value()), std::move(build)};
-    Pipeline* result = entry.pipeline.get();
-    pipelines_.emplace(key, std::move(entry));
-    batch_->add(key, result);
-    return result;
+    std::function<Result<Pipeline>()> first;
+    if (batch_) first = [make] { return make(true); };
+    return get(key, [make] { return make(false); }, first);
 }
 
 ProgramCache::Batch::Batch(ProgramCache& cache) : cache_(cache) {

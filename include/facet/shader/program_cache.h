@@ -82,7 +82,10 @@ private:
         std::unique_ptr<Pipeline> pipeline;
         std::function<Result<Pipeline>()> build;
     };
-    Result<const Pipeline*> get(const std::string& key, std::function<Result<Pipeline>()> build);
+    // The pipeline of `key`, made by `build` (kept for reload()) the first time, or by
+    // `first` when given (a batch's deferred pipeline, queued for its workers).
+    Result<const Pipeline*> get(const std::string& key, std::function<Result<Pipeline>()> build,
+                                const std::function<Result<Pipeline>()>& first = {});
 
     Context& context_;
     ShaderCompiler& compiler_;
