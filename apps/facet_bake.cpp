@@ -60,16 +60,24 @@ bool up_to_date(const std::string& dir, const std::string& key) {
 }
 
 int bake(const Options& o) {
+    // The environment's float files are encoded on a thread of their own, made before the
+    // device's (a thread made while the Vulkan loader opens the drivers waits for it,
+    // ~40 ms), which gets the texels once they are read. `to_encode` goes before `encoded`
+    // (an early return breaks the promise and the encoder ends).
+    EncodedEnvironment encoded;
+    std::promise<std::shared_ptr<const EnvironmentSource>> to_encode;
+    encoded = encode_environment_files_in_background(to_encode.get_future().share());
     // Vulkan starts on a second thread (the loader's drivers, LLVM and the device: ~0.1 s
-    // on lavapipe) while this one reads the input and encodes the environment's float
-    // files. A bake that runs whatever the input holds (--force, or no bake in DIR to
-    // compare with) starts it first thing; an up-to-date check reads the input first and,
-    // when the bake is up to date, needs no device at all.
+    // on lavapipe) while this one reads the input. A bake that runs whatever the input
+    // holds (--force, or no bake in DIR to compare with) starts it first thing; an
+    // up-to-date check reads the input first and, when the bake is up to date, needs no
+    // device at all.
     std::future<std::unique_ptr<Context>> starting;
     auto start = [&] { starting = std::async(std::launch::async, [&] { return start_vulkan(o.device, o.validation); }); };
     if (o.force || !fs::exists(fs::path(o.out_dir) / "bake.json")) start();
-    auto source = resolve_environment(o.env, o.sky_width, {o.sanitize, o.max_env_width});
-    if (!source) throw std::runtime_error(source.error().message);
+    auto resolved_source = resolve_environment(o.env, o.sky_width, {o.sanitize, o.max_env_width});
+    if (!resolved_source) throw std::runtime_error(resolved_source.error().message);
+    const auto source = std::make_shared<const EnvironmentSource>(std::move(*resolved_source));
     if (source->source_width != source->width)
         std::fprintf(stderr, "%s: %s: %ux%u downsampled to %ux%u while reading (--max-env-width %u)\n", program,
                      o.env.c_str(), source->source_width, source->source_height, source->width, source->height,
@@ -88,11 +96,9 @@ int bake(const Options& o) {
     }
     if (!starting.valid()) start();
     // A file's environment.exr and .hdr (the bake's own texels unless lights are taken out).
-    if (!source->sky && !o.extract_lights) {
-        auto encoded = encode_environment_files(*source);
-        if (!encoded) throw std::runtime_error(encoded.error().message);
-        requested.encoded_environment = std::make_shared<const EncodedEnvironmentFiles>(std::move(*encoded));
-    }
+    const bool own_texels = !source->sky && !o.extract_lights;
+    to_encode.set_value(own_texels ? source : nullptr);
+    if (own_texels) requested.encoded_environment = encoded;
     const std::unique_ptr<Context> vulkan = starting.get();
     Context& context = *vulkan;
     // Sizes the device cannot hold fail before anything is created or written.

@@ -218,11 +218,9 @@ Result<BakedEnvironment> bake(Context& context, ProgramCache& programs, const En
         }
     }
     const EnvironmentSource& baked_source = residual ? *residual : input;
-    // The caller's encoded environment files, kept when they are of the texels baked.
-    if (const auto& encoded = settings.encoded_environment;
-        encoded && !residual && !input.sky && encoded->content_hash == input.content_hash &&
-        encoded->width == input.width && encoded->height == input.height)
-        A::encoded(out) = encoded;
+    // The caller's encoded environment files, kept when the environment baked is the
+    // input's texels (save() checks their content hash and size against it).
+    if (!residual && !input.sky) A::encoded(out) = settings.encoded_environment;
 
     if (settings.target_error > 0) {
         auto budget = choose_within_budget(context, programs, residual ? *residual : analysed, settings.ibl,

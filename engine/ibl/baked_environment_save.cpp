@@ -218,7 +218,13 @@ Status BakedEnvironment::stage(OutputSet& outputs, const std::string& dir, const
     };
     // Every image needed, read back in one submission; the files are then written from the
     // mapped readback buffer on second threads.
-    const bool environment_encoded = encoded_ && encoded_->previews == options.previews;
+    // Files encoded ahead are used when they are of the texels baked (waits for an encoder
+    // still at work: it had the whole bake's idle cores).
+    const std::shared_ptr<const EncodedEnvironmentFiles> encoded = encoded_.get();
+    const bool environment_encoded = encoded && encoded->content_hash == metadata_.content_hash &&
+                                     encoded->width == environment_.desc().width &&
+                                     encoded->height == environment_.desc().height &&
+                                     encoded->previews == options.previews;
     const Image* preview_image = options.previews && preview_ ? &preview_ : nullptr;
     struct Ktx2Output {
         const char* name;
@@ -241,7 +247,7 @@ Status BakedEnvironment::stage(OutputSet& outputs, const std::string& dir, const
     else hdr_path = staged("environment.hdr");
     if (environment_encoded) {
         // Encoded ahead (BakeSettings::encoded_environment): only the bytes to write.
-        in_background([exr_path, hdr_path, encoded = encoded_]() -> Status {
+        in_background([exr_path, hdr_path, encoded]() -> Status {
             if (Status s = write_binary_file(exr_path, encoded->exr); !s) return s;
             if (!hdr_path.empty()) return write_binary_file(hdr_path, encoded->hdr);
             return Ok{};
@@ -329,6 +335,30 @@ Result<EncodedEnvironmentFiles> encode_environment_files(const EnvironmentSource
         files.hdr = std::move(*hdr);
     }
     return files;
+}
+
+EncodedEnvironment::EncodedEnvironment(std::shared_ptr<const EncodedEnvironmentFiles> ready) {
+    if (!ready) return;
+    std::promise<std::shared_ptr<const EncodedEnvironmentFiles>> made;
+    made.set_value(std::move(ready));
+    pending_ = made.get_future().share();
+}
+
+EncodedEnvironment encode_environment_files_in_background(
+    std::shared_future<std::shared_ptr<const EnvironmentSource>> source, const BakeSaveOptions& options) {
+    auto work = [source = std::move(source), options]() -> std::shared_ptr<const EncodedEnvironmentFiles> {
+        std::shared_ptr<const EnvironmentSource> texels;
+        try {
+            texels = source.get();
+        } catch (const std::future_error&) {  // the caller gave up before it had them
+            return nullptr;
+        }
+        if (!texels) return nullptr;
+        auto files = encode_environment_files(*texels, options);
+        if (!files) return nullptr;
+        return std::make_shared<const EncodedEnvironmentFiles>(std::move(*files));
+    };
+    return EncodedEnvironment(std::async(std::launch::async, std::move(work)).share());
 }
 
 Status BakedEnvironment::save(const std::string& dir, const BakeSaveOptions& options) const {

@@ -30,7 +30,7 @@ struct BakedEnvironmentAccess {
     static std::vector<float>& sh9(BakedEnvironment& b) { return b.sh9_; }
     static std::vector<DiskLight>& lights(BakedEnvironment& b) { return b.lights_; }
     static Image& preview(BakedEnvironment& b) { return b.preview_; }
-    static std::shared_ptr<const EncodedEnvironmentFiles>& encoded(BakedEnvironment& b) { return b.encoded_; }
+    static EncodedEnvironment& encoded(BakedEnvironment& b) { return b.encoded_; }
     static BakeMetadata& metadata(BakedEnvironment& b) { return b.metadata_; }
 };
 

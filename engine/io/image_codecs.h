@@ -33,8 +33,9 @@ private:
 
 // PNG (W3C, "Portable Network Graphics Specification", 2nd ed.): 8-bit RGBA with
 // straight alpha (colour type 6), rows top first, each row filtered with Sub (filter
-// type 1), deflated at zlib level 1 with run-length matches only (Z_RLE).
-Status write_png(ByteSink& out, uint32_t width, uint32_t height, const uint8_t* rgba);
+// type 1), deflated at zlib level 1 with run-length matches only (Z_RLE), in `parts` runs
+// of rows on as many threads (0: one per core, up to 4, for images of 256 KiB or more).
+Status write_png(ByteSink& out, uint32_t width, uint32_t height, const uint8_t* rgba, uint32_t parts = 0);
 
 // OpenEXR ("OpenEXR File Layout"): one part of scanlines, channels A, B, G, R as 32-bit
 // float (every bit of the input kept), ZIP_COMPRESSION (16 rows a chunk), increasing y.

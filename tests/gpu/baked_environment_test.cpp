@@ -3,10 +3,12 @@
 // names it. Also the rules of ibl/bake_rules.h and the JSON reader load() relies on.
 #include <gtest/gtest.h>
 
+
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <memory>
 #include <sstream>
 
@@ -413,7 +415,7 @@ TEST_F(BakedEnvironmentTest, EnvironmentFilesEncodedAheadAreWrittenOnlyForTheirO
         files->content_hash = content_hash;
         files->exr.assign(10, uint8_t('E'));
         files->hdr.assign(10, uint8_t('H'));
-        return files;
+        return std::shared_ptr<const EncodedEnvironmentFiles>(files);
     };
     auto save_with = [&](std::shared_ptr<const EncodedEnvironmentFiles> files, const char* name,
                          const BakeSaveOptions& options = {}) {
@@ -469,6 +471,44 @@ TEST_F(BakedEnvironmentTest, EnvironmentFilesEncodedAheadAreWrittenOnlyForTheirO
     auto none = encode_environment_files(sky);
     ASSERT_FALSE(none);
     EXPECT_NE(none.error().message.find("builtin:sky"), std::string::npos) << none.error().message;
+
+    // On a thread of its own, for texels handed over later: the same bytes; none for no
+    // texels, a sky's, or a source that never comes.
+    {
+        std::promise<std::shared_ptr<const EnvironmentSource>> later;
+        EncodedEnvironment pending = encode_environment_files_in_background(later.get_future().share());
+        ASSERT_TRUE(pending);
+        later.set_value(std::make_shared<const EnvironmentSource>(source));
+        auto files = pending.get();
+        ASSERT_TRUE(files);
+        EXPECT_EQ(files->exr, encoded->exr);
+        EXPECT_EQ(files->hdr, encoded->hdr);
+        EXPECT_EQ(files->content_hash, source.content_hash);
+        BakeSettings settings = small_settings();
+        settings.encoded_environment = pending;
+        auto baked = bake(source, settings);
+        ASSERT_TRUE(baked) << baked.error().message;
+        test::TempDir dir("encoded_in_background");
+        ASSERT_TRUE(baked->save(dir.path.string()));
+        EXPECT_EQ(read_text(dir / "environment.exr"), read_text(reference / "environment.exr"));
+        EXPECT_EQ(read_text(dir / "environment.hdr"), read_text(reference / "environment.hdr"));
+    }
+    for (auto given : {std::shared_ptr<const EnvironmentSource>(), std::make_shared<const EnvironmentSource>(sky)}) {
+        std::promise<std::shared_ptr<const EnvironmentSource>> later;
+        EncodedEnvironment pending = encode_environment_files_in_background(later.get_future().share());
+        later.set_value(given);
+        EXPECT_FALSE(pending.get());
+    }
+    {
+        EncodedEnvironment pending;
+        {
+            std::promise<std::shared_ptr<const EnvironmentSource>> never;
+            pending = encode_environment_files_in_background(never.get_future().share());
+        }
+        EXPECT_FALSE(pending.get()) << "a broken promise ends the encoder with nothing";
+    }
+    EXPECT_FALSE(EncodedEnvironment{});
+    EXPECT_FALSE(EncodedEnvironment{}.get());
 }
 
 // A procedural sky is rendered into texels for the warnings only where a method's domain

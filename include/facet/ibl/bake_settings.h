@@ -3,6 +3,7 @@
 // through: progress lines, pass progress, and safe points where the caller may stop it.
 #include <cstdint>
 #include <functional>
+#include <future>
 #include <memory>
 #include <string>
 
@@ -16,6 +17,24 @@
 namespace facet {
 
 struct EncodedEnvironmentFiles;  // ibl/baked_environment.h
+
+// environment.exr (and .hdr) encoded by the caller: ready, or still being encoded on a
+// thread of its own (encode_environment_files_in_background, ibl/baked_environment.h).
+class EncodedEnvironment {
+public:
+    EncodedEnvironment() = default;
+    // Files already encoded (null: none).
+    EncodedEnvironment(std::shared_ptr<const EncodedEnvironmentFiles> ready);
+    // Files still being encoded; the value is null where the encoder failed.
+    explicit EncodedEnvironment(std::shared_future<std::shared_ptr<const EncodedEnvironmentFiles>> pending)
+        : pending_(std::move(pending)) {}
+    explicit operator bool() const { return pending_.valid(); }
+    // The files, once encoded (waits for the encoder); null for none or a failed encoder.
+    std::shared_ptr<const EncodedEnvironmentFiles> get() const { return pending_.valid() ? pending_.get() : nullptr; }
+
+private:
+    std::shared_future<std::shared_ptr<const EncodedEnvironmentFiles>> pending_;
+};
 
 // What BakedEnvironment::save writes.
 struct BakeSaveOptions {
@@ -48,12 +67,15 @@ struct BakeSettings {
     // uploads it instead of computing it; a damaged entry is said, removed and made again.
     // Empty directory: none.
     CacheOptions lut_cache{"", 4ull << 30, false};
-    // environment.exr (and .hdr) already encoded by the caller from the texels it bakes
-    // (encode_environment_files in ibl/baked_environment.h), e.g. while the device started:
-    // the BakedEnvironment keeps them, and saving writes these bytes instead of reading the
-    // environment back and encoding it. Ignored where they are not of the environment as
-    // baked (another input, a built-in sky, the residual of extracted lights).
-    std::shared_ptr<const EncodedEnvironmentFiles> encoded_environment;
+    // environment.exr (and .hdr) encoded by the caller from the texels it bakes
+    // (encode_environment_files or encode_environment_files_in_background in
+    // ibl/baked_environment.h), e.g. while the device starts: the BakedEnvironment keeps
+    // them, and saving writes these bytes instead of reading the environment back and
+    // encoding it (it waits there for files still being encoded). Ignored where they are
+    // not of the environment as baked (another input or size, a built-in sky, the residual
+    // of extracted lights) or the encoder failed: the environment is then encoded from the
+    // texels read back, as without them.
+    EncodedEnvironment encoded_environment;
 };
 
 // A line of progress (passes, the budget's measurements, ...).

@@ -81,6 +81,15 @@ struct EncodedEnvironmentFiles {
 // encoder fails.
 Result<EncodedEnvironmentFiles> encode_environment_files(const EnvironmentSource& source,
                                                          const BakeSaveOptions& options = {});
+// The same on a thread of its own, for the texels `source` gives when it has them (null:
+// nothing to encode): a program makes the thread first thing and hands it the texels once
+// read, while the device starts on another (a thread made while the Vulkan loader opens
+// the drivers waits for it: glibc's loader lock, ~40 ms on lavapipe). Saving waits for the
+// files if they are not done by then. The value is null where encoding fails or the
+// source never comes (a built-in sky included): the save then encodes the texels it reads
+// back.
+EncodedEnvironment encode_environment_files_in_background(
+    std::shared_future<std::shared_ptr<const EnvironmentSource>> source, const BakeSaveOptions& options = {});
 
 class BakedEnvironment {
 public:
@@ -136,8 +145,9 @@ private:
     Context* context_ = nullptr;  // the images' (save() reads them back through it)
     Image environment_, cube_, specular_, irradiance_, lut_, preview_;
     Sampler cube_sampler_;
-    // environment.exr (and .hdr) encoded ahead (BakeSettings::encoded_environment), or null.
-    std::shared_ptr<const EncodedEnvironmentFiles> encoded_;
+    // environment.exr (and .hdr) encoded ahead (BakeSettings::encoded_environment), or
+    // none; used where their content hash and size are the environment's.
+    EncodedEnvironment encoded_;
     std::vector<float> sh9_;
     std::vector<DiskLight> lights_;
     BakeMetadata metadata_;
