@@ -5,10 +5,12 @@
 #include <facet/ibl/baked_environment.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <future>
 #include <memory>
 #include <new>
 
@@ -54,11 +56,20 @@ struct Outputs {
 // The largest sound value and the count of NaN, Inf and negative values, as
 // shaders/ibl/output_range.comp finds them on the GPU.
 OutputRange host_range(const std::vector<float>& texels) {
+    // Branch-free, so that it vectorises: NaN fails v >= 0, +Inf fails v <= FLT_MAX.
     OutputRange r;
-    for (float v : texels) {
-        const bool sound = std::isfinite(v) && v >= 0.0f;
-        r.bad += sound ? 0 : 1;
-        if (sound) r.peak = std::max(r.peak, v);
+    for (size_t at = 0; at < texels.size();) {
+        const size_t end = std::min(texels.size(), at + (size_t(1) << 24));
+        uint32_t bad = 0;
+        float peak = r.peak;
+        for (; at < end; ++at) {
+            const float v = texels[at];
+            const bool sound = v >= 0.0f && v <= FLT_MAX;
+            bad += sound ? 0u : 1u;
+            peak = std::max(peak, sound ? v : 0.0f);
+        }
+        r.bad += bad;
+        r.peak = peak;
     }
     return r;
 }
@@ -132,6 +143,9 @@ Outputs run_bake_graph(Context& context, ProgramCache& programs, const Environme
     meta.passes = uint32_t(compiled.passes.size());
     if (cb.progress) cb.progress("running " + std::to_string(compiled.passes.size()) + " passes");
     GraphRun run(context, compiled);
+    // An uploaded environment's range, checked on the host while the passes run.
+    std::future<OutputRange> host_checked;
+    if (uploaded) host_checked = std::async(std::launch::async, [&] { return host_range(source.image.rgba); });
     or_throw(run.submit_and_wait([&](uint32_t done, uint32_t total, const std::string& pass) {
         if (cb.pass_done) cb.pass_done(done, total, pass);
         bake_safe_point(cb.stop, "pass");
@@ -139,7 +153,7 @@ Outputs run_bake_graph(Context& context, ProgramCache& programs, const Environme
     Outputs r;
     r.timings = run.timings();
     r.ranges = read_output_ranges(context, *run.transient_buffer(ranges), checked.size());
-    if (uploaded) r.ranges.insert(r.ranges.begin(), host_range(source.image.rgba));
+    if (uploaded) r.ranges.insert(r.ranges.begin(), host_checked.get());
     auto take = [&](ImageHandle h) { return h.valid() ? run.detach_image(h) : Image{}; };
     r.environment = take(images.equirect);
     r.cube = take(images.cube);

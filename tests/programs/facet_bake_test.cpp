@@ -160,17 +160,31 @@ TEST(FacetBake, BakesAnEnvironmentFile) {
 }
 
 // Results identical from run to run: no random seeds, no order-dependent sums.
+// Also across the two ways a bake ends: with validation the device is torn down (and the
+// layer checks it); without, the process ends after the commit without tearing it down.
+// Both give every file, byte for byte, and every line.
 TEST(FacetBake, BakesAreDeterministic) {
     TempDir dir;
     const std::string args = "builtin:sky --width 128 --lut-size 16 --force --out ";
-    Ran first = run(args + (dir.path / "a").string());
-    Ran second = run(args + (dir.path / "b").string());
+    auto with_validation = [&](const char* on, const char* sub) {
+        return facet::test::run_command(std::string("FACET_VALIDATION=") + on + " " + FACET_BAKE_PATH + " " + args +
+                                        (dir.path / sub).string());
+    };
+    Ran first = with_validation("1", "a");
+    Ran second = with_validation("0", "b");
     ASSERT_EQ(first.status, 0) << first.output;
     ASSERT_EQ(second.status, 0) << second.output;
-    for (const char* name : {"specular.ktx2", "irradiance.ktx2", "brdf_lut.ktx2", "environment.exr"}) {
+    for (const Ran* r : {&first, &second}) EXPECT_NE(r->output.find("GPU, "), std::string::npos) << r->output;
+    for (const char* name : {"specular.ktx2", "irradiance.ktx2", "brdf_lut.ktx2", "environment.ktx2", "environment.exr",
+                             "environment.hdr", "environment.png", "brdf_lut.png"}) {
         const std::string a = file_bytes(dir.path / "a" / name), b = file_bytes(dir.path / "b" / name);
         EXPECT_FALSE(a.empty()) << name;
         EXPECT_TRUE(a == b) << name << " differs between two identical bakes";
+    }
+    for (const char* sub : {"a", "b"}) {
+        size_t files = 0;
+        for (auto& e : fs::directory_iterator(dir.path / sub)) files += e.is_regular_file();
+        EXPECT_EQ(files, 9u) << sub << ": no temporary files left behind";
     }
 }
 
