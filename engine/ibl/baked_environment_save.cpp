@@ -253,13 +253,14 @@ Status BakedEnvironment::stage(OutputSet& outputs, const std::string& dir, const
             return Ok{};
         });
     } else {
-        in_background([exr_path, hdr_path, e, read]() -> Status {
-            const std::span<const std::byte> level = read.levels[4][0];
-            const std::span<const float> env(reinterpret_cast<const float*>(level.data()), level.size() / sizeof(float));
-            if (Status s = write_hdr_image(exr_path, e.width, e.height, env); !s) return s;
-            if (!hdr_path.empty()) return write_hdr_image(hdr_path, e.width, e.height, env);
-            return Ok{};
-        });
+        // Each file on a thread of its own (the EXR's compression on every core).
+        for (const std::string& to : {exr_path, hdr_path})
+            if (!to.empty())
+                in_background([to, e, read]() -> Status {
+                    const std::span<const std::byte> level = read.levels[4][0];
+                    return write_hdr_image(to, e.width, e.height,
+                                           {reinterpret_cast<const float*>(level.data()), level.size() / sizeof(float)});
+                });
     }
     if (!options.previews) {
         remove_old("environment.png", no_previews);
@@ -326,7 +327,8 @@ Result<EncodedEnvironmentFiles> encode_environment_files(const EnvironmentSource
     files.width = source.width;
     files.height = source.height;
     files.previews = options.previews;
-    auto exr = encode_hdr_image("environment.exr", source.width, source.height, source.image.rgba);
+    // On this thread only: encoding ahead runs beside other work (the device's start).
+    auto exr = encode_hdr_image("environment.exr", source.width, source.height, source.image.rgba, 1);
     if (!exr) return exr.error();
     files.exr = std::move(*exr);
     if (options.previews) {

@@ -255,39 +255,53 @@ void exr_zip_predict(const std::vector<uint8_t>& raw, std::vector<uint8_t>& out)
 
 }  // namespace
 
-Status write_exr(ByteSink& out, uint32_t width, uint32_t height, const float* rgba) {
-    // A chunk's byte count is an int32.
-    if (width == 0 || height == 0 || height > INT32_MAX || uint64_t(width) * kExrZipRows * 16 > INT32_MAX)
-        return Error{std::to_string(width) + "x" + std::to_string(height) + " is not a size this EXR writer takes"};
-    const std::vector<uint8_t> header = exr_header_bytes(width, height);
-    const uint32_t chunks = (height + kExrZipRows - 1) / kExrZipRows;
-    std::vector<uint64_t> offsets(chunks);
-    if (!out.put(header.data(), header.size()) || !out.put(offsets.data(), offsets.size() * 8)) return write_failed();
-    uint64_t at = header.size() + offsets.size() * 8;
+namespace {
 
+// The chunks [first, last) of an EXR (ZIP_COMPRESSION, kExrZipRows rows each), each with its
+// y and byte count, put to `out` (the first part: straight to the file) or kept in `kept`
+// with their sizes (the other parts, put after it). One deflate state for every chunk
+// (reset, not made again: ~0.3 MB of state each).
+struct ExrPart {
+    std::vector<uint8_t> kept;
+    std::vector<uint32_t> sizes;  // each chunk's bytes, its y and byte count included
+    Status status = Ok{};
+};
+
+void compress_exr_chunks(uint32_t width, uint32_t height, const float* rgba, uint32_t first, uint32_t last,
+                         ByteSink* out, ExrPart& part) {
     DeflateStream zip(kExrZipLevel, 15, Z_DEFAULT_STRATEGY);
-    if (!zip.open) return Error{"zlib cannot start deflating (out of memory)"};
+    if (!zip.open) {
+        part.status = Error{"zlib cannot start deflating (out of memory)"};
+        return;
+    }
+    ByteSink kept(part.kept);
+    ByteSink& to = out ? *out : kept;
     std::vector<uint8_t> raw, predicted, packed, chunk;
-    for (uint32_t k = 0; k < chunks; ++k) {
+    for (uint32_t k = first; k < last; ++k) {
         const uint32_t y0 = k * kExrZipRows, y1 = std::min(height, y0 + kExrZipRows);
         // Each row: every channel's values in turn, in the channel list's order.
         raw.resize(size_t(y1 - y0) * width * 16);
-        uint8_t* to = raw.data();
+        uint8_t* at = raw.data();
         for (uint32_t y = y0; y < y1; ++y)
             for (int c : {3, 2, 1, 0}) {
                 const float* from = rgba + size_t(y) * width * 4 + c;
-                for (uint32_t x = 0; x < width; ++x, to += 4) std::memcpy(to, from + size_t(x) * 4, 4);
+                for (uint32_t x = 0; x < width; ++x, at += 4) std::memcpy(at, from + size_t(x) * 4, 4);
             }
         exr_zip_predict(raw, predicted);
-        // One deflate state for every chunk (reset, not made again: ~0.3 MB of state each).
         z_stream& z = zip.z;
         packed.resize(deflateBound(&z, uLong(predicted.size())));
-        if (deflateReset(&z) != Z_OK) return Error{"zlib failed while compressing"};
+        if (deflateReset(&z) != Z_OK) {
+            part.status = Error{"zlib failed while compressing"};
+            return;
+        }
         z.next_in = predicted.data();
         z.avail_in = uInt(predicted.size());
         z.next_out = packed.data();
         z.avail_out = uInt(packed.size());
-        if (::deflate(&z, Z_FINISH) != Z_STREAM_END) return Error{"zlib failed while compressing"};
+        if (::deflate(&z, Z_FINISH) != Z_STREAM_END) {
+            part.status = Error{"zlib failed while compressing"};
+            return;
+        }
         const size_t packed_size = packed.size() - z.avail_out;
         // A chunk that compression does not shrink is stored as it is (readers tell the
         // two apart by its size).
@@ -297,9 +311,50 @@ Status write_exr(ByteSink& out, uint32_t width, uint32_t height, const float* rg
         chunk.clear();
         append_le(chunk, int32_t(y0));
         append_le(chunk, int32_t(size));
-        offsets[k] = at;
-        if (!out.put(chunk.data(), chunk.size()) || !out.put(data, size)) return write_failed();
-        at += chunk.size() + size;
+        if (!to.put(chunk.data(), chunk.size()) || !to.put(data, size)) {
+            part.status = write_failed();
+            return;
+        }
+        part.sizes.push_back(uint32_t(chunk.size() + size));
+    }
+}
+
+}  // namespace
+
+Status write_exr(ByteSink& out, uint32_t width, uint32_t height, const float* rgba, uint32_t parts) {
+    // A chunk's byte count is an int32.
+    if (width == 0 || height == 0 || height > INT32_MAX || uint64_t(width) * kExrZipRows * 16 > INT32_MAX)
+        return Error{std::to_string(width) + "x" + std::to_string(height) + " is not a size this EXR writer takes"};
+    const std::vector<uint8_t> header = exr_header_bytes(width, height);
+    const uint32_t chunks = (height + kExrZipRows - 1) / kExrZipRows;
+    std::vector<uint64_t> offsets(chunks);
+    if (!out.put(header.data(), header.size()) || !out.put(offsets.data(), offsets.size() * 8)) return write_failed();
+
+    // The chunks in `parts` runs, one a thread: the first goes straight to `out`, the
+    // others are kept in memory and put after it.
+    const size_t bytes = size_t(width) * height * 16;
+    const uint32_t cores = std::max(1u, std::min(4u, std::thread::hardware_concurrency()));
+    if (parts == 0) parts = bytes < (size_t(1) << 20) ? 1u : std::max(1u, std::min(cores, chunks / 4));
+    parts = std::max(1u, std::min(parts, chunks));
+    std::vector<ExrPart> compressed(parts);
+    {
+        auto first_chunk = [&](uint32_t k) { return uint32_t(uint64_t(chunks) * k / parts); };
+        std::vector<std::thread> helpers;
+        for (uint32_t k = 1; k < parts; ++k)
+            helpers.emplace_back(compress_exr_chunks, width, height, rgba, first_chunk(k), first_chunk(k + 1), nullptr,
+                                 std::ref(compressed[k]));
+        compress_exr_chunks(width, height, rgba, 0, first_chunk(1), &out, compressed[0]);
+        for (std::thread& t : helpers) t.join();
+    }
+    uint64_t at = header.size() + offsets.size() * 8;
+    size_t k = 0;
+    for (const ExrPart& part : compressed) {
+        if (!part.status) return part.status;
+        if (&part != &compressed[0] && !out.put(part.kept.data(), part.kept.size())) return write_failed();
+        for (uint32_t size : part.sizes) {
+            offsets[k++] = at;
+            at += size;
+        }
     }
     if (!out.patch(header.size(), offsets.data(), offsets.size() * 8)) return write_failed();
     return Ok{};

@@ -64,12 +64,12 @@ namespace {
 
 // The encoder of `path`'s extension (.exr or .hdr) for RGBA float texels.
 Result<std::function<Status(codec::ByteSink&)>> hdr_encoder(const std::string& path, uint32_t width, uint32_t height,
-                                                             std::span<const float> rgba) {
+                                                             std::span<const float> rgba, uint32_t threads = 0) {
     if (Status s = check_image_buffer(path, width, height, rgba.size()); !s) return s.error();
     const std::string ext = lower_extension(path);
     if (ext != ".exr" && ext != ".hdr") return Error{path + ": HDR output must be .exr or .hdr"};
     return std::function<Status(codec::ByteSink&)>([=](codec::ByteSink& out) {
-        return ext == ".exr" ? codec::write_exr(out, width, height, rgba.data())
+        return ext == ".exr" ? codec::write_exr(out, width, height, rgba.data(), threads)
                              : codec::write_rgbe(out, width, height, rgba.data());
     });
 }
@@ -83,8 +83,8 @@ Status write_hdr_image(const std::string& path, uint32_t width, uint32_t height,
 }
 
 Result<std::vector<uint8_t>> encode_hdr_image(const std::string& path, uint32_t width, uint32_t height,
-                                              std::span<const float> rgba) {
-    auto encoder = hdr_encoder(path, width, height, rgba);
+                                              std::span<const float> rgba, uint32_t threads) {
+    auto encoder = hdr_encoder(path, width, height, rgba, threads);
     if (!encoder) return encoder.error();
     // Room for the largest file (stored EXR chunks, or RGBE rows whose run-length coding
     // grows them by a byte in 128) reserved and given huge pages before it is written.

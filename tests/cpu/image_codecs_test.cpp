@@ -130,6 +130,25 @@ TEST(ImageCodecs, PngInPartsDecodesToExactlyTheInput) {
     }
 }
 
+// An EXR's chunks compressed in parts on several threads: the same bytes for every count.
+TEST(ImageCodecs, ExrInPartsIsTheSameFile) {
+    std::mt19937 random(3);
+    std::uniform_real_distribution<float> value(0.0f, 4.0f);
+    for (Size s : {Size{300, 200}, Size{64, 17}, Size{1, 1}}) {
+        std::vector<float> rgba(size_t(s.width) * s.height * 4);
+        for (size_t i = 0; i < rgba.size(); ++i) rgba[i] = i % 7 == 0 ? value(random) : float(i % 97) * 0.25f;
+        std::vector<uint8_t> one;
+        codec::ByteSink first(one);
+        ASSERT_TRUE(codec::write_exr(first, s.width, s.height, rgba.data(), 1));
+        for (uint32_t parts : {0u, 2u, 3u, 4u, 16u}) {
+            std::vector<uint8_t> bytes;
+            codec::ByteSink sink(bytes);
+            ASSERT_TRUE(codec::write_exr(sink, s.width, s.height, rgba.data(), parts));
+            EXPECT_TRUE(bytes == one) << s.width << "x" << s.height << " in " << parts << " parts";
+        }
+    }
+}
+
 // Formats other than PNG are written through the image module, as the extension says.
 TEST(ImageCodecs, OtherLdrFormatsGoThroughTheModule) {
     TempDir dir("image_codecs_test");

@@ -77,8 +77,8 @@ struct EncodedEnvironmentFiles {
     std::vector<uint8_t> exr;
     std::vector<uint8_t> hdr;  // empty without previews
 };
-// An Error for a built-in environment (its texels are made on the device) and when an
-// encoder fails.
+// Encoded on the calling thread only (it runs beside other work). An Error for a built-in
+// environment (its texels are made on the device) and when an encoder fails.
 Result<EncodedEnvironmentFiles> encode_environment_files(const EnvironmentSource& source,
                                                          const BakeSaveOptions& options = {});
 // The same on a thread of its own, for the texels `source` gives when it has them (null:

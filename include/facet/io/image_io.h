@@ -18,9 +18,11 @@ Status write_hdr_image(const std::string& path, uint32_t width, uint32_t height,
 
 // The bytes write_hdr_image(path, ...) writes (.exr or .hdr by `path`'s extension), made
 // in memory: a program encodes a file ahead of the moment it writes it
-// (write_binary_file). Errors name `path`.
+// (write_binary_file). An .exr's compression runs on `threads` threads (0: one per core,
+// up to 4, as write_hdr_image; 1: the calling thread only, for work beside other work);
+// the bytes are the same. Errors name `path`.
 Result<std::vector<uint8_t>> encode_hdr_image(const std::string& path, uint32_t width, uint32_t height,
-                                              std::span<const float> rgba);
+                                              std::span<const float> rgba, uint32_t threads = 0);
 
 // Loads the module that reads image files other than Radiance .hdr (OpenImageIO and its
 // libraries: about 0.3 s of CPU) now, so that the first such read does not pay for it;
