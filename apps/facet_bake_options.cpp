@@ -31,6 +31,8 @@ cli::Parser make_parser() {
                                         "                          importance, filtered, convolve, mips, hybrid")
         .option("--samples", "N", "GGX samples per texel for importance/filtered levels (default 1024)")
         .option("--hybrid-samples", "N", "filtered samples of the clamped environment per hybrid texel (default 128)")
+        .flag("--hybrid-full-size", "hybrid: sample the clamped environment at each level's own size (default:\n"
+                                    "                          at half size where the lobe spans several of its texels)")
         .option("--size", "N", "cube face size (default: input height / 2)")
         .option("--levels", "N", "specular levels, roughness m/(N-1) (default 6)")
         .option("--irradiance-size", "N", "irradiance face size (default 32)")
@@ -88,6 +90,7 @@ std::optional<BakeOptions> parse_bake_options(int argc, char** argv) {
     }
     if (a.has("--samples")) o.specular.sample_count = positive(a, "--samples", 1 << 20);
     if (a.has("--hybrid-samples")) o.specular.hybrid_sample_count = positive(a, "--hybrid-samples", 4096);
+    if (a.has("--hybrid-full-size")) o.specular.hybrid_half_size_residual = false;
     if (a.has("--size")) o.cube_size = positive(a, "--size", 8192);
     if (a.has("--levels")) o.specular.levels = positive(a, "--levels", 16);
     if (a.has("--irradiance-size")) o.irradiance.size = positive(a, "--irradiance-size", 1024);

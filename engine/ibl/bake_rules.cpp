@@ -38,7 +38,7 @@ std::vector<std::string> bake_warnings(const EnvironmentSource& analysed, const 
 // What a bake makes of the same input and settings: bumped with every change to the
 // passes or their rules (the LUT's channels, light extraction, the split level), so that
 // a bake cache never hands out an entry made by older code of the same version number.
-constexpr const char* kBakeRevision = "bake revision 7: the irradiance of the whole environment, lights in it";
+constexpr const char* kBakeRevision = "bake revision 8: hybrid levels' residual part at half size";
 
 std::string bake_key(const EnvironmentSource& s, const BakeSettings& b) {
     const IblSettings& o = b.ibl;
@@ -51,6 +51,7 @@ std::string bake_key(const EnvironmentSource& s, const BakeSettings& b) {
                              double(int(o.specular.method)), double(o.specular.sample_count),
                              o.specular.automatic_convolve_from, double(o.specular.min_roughness),
                              double(o.specular.hybrid_sample_count), o.specular.excess_factor,
+                             double(o.specular.hybrid_half_size_residual),
                              double(o.lut.size), double(o.lut.sample_count), double(int(o.lut.brdf)),
                              b.target_error, double(b.roughness_min), double(b.roughness_max),
                              double(o.want_irradiance), double(o.want_specular), double(o.want_lut),

@@ -46,6 +46,11 @@ struct Reader {
         if (!(d >= 0 && d <= 4294967295.0) || d != std::floor(d)) throw Missing{where + key + " (a count)"};
         return uint32_t(d);
     }
+    bool flag(const char* key) const {
+        const JsonValue& m = at(key);
+        if (m.type() != JsonValue::Type::boolean) throw Missing{where + key + " (true or false)"};
+        return m.boolean();
+    }
     std::string text(const char* key) const {
         const JsonValue& m = at(key);
         if (!m.is_string()) throw Missing{where + key + " (a string)"};
@@ -218,6 +223,9 @@ Result<BakedEnvironment> load_dir(Context& context, const std::string& dir, cons
         // Written since bake revision 6; older bakes made no hybrid level.
         if (spec.optional("hybrid_sample_count")) s.specular.hybrid_sample_count = spec.count("hybrid_sample_count");
         if (spec.optional("excess_factor")) s.specular.excess_factor = float(spec.number("excess_factor"));
+        // Written since bake revision 8; older bakes sampled the residual at full size.
+        s.specular.hybrid_half_size_residual =
+            spec.optional("hybrid_half_size_residual") && spec.flag("hybrid_half_size_residual");
         s.specular.min_roughness = float(spec.number("min_roughness"));
         meta.first_specular_level = spec.count("first_level");
         const JsonValue& levels = spec.at("levels");

@@ -95,6 +95,7 @@ std::string bake_json(const BakedEnvironment& b) {
             .value("automatic_convolve_from", double(s.specular.automatic_convolve_from))
             .value("hybrid_sample_count", s.specular.hybrid_sample_count)
             .value("excess_factor", double(s.specular.excess_factor))
+            .value("hybrid_half_size_residual", s.specular.hybrid_half_size_residual)
             .value("min_roughness", double(s.specular.min_roughness))
             .value("first_level", d.first_specular_level)
             .value("alpha", "roughness^2")
@@ -106,6 +107,9 @@ std::string bake_json(const BakedEnvironment& b) {
                 .value("roughness", double(d.roughness[m]))
                 .value("method", m == 0 ? "copy" : specular_method_name(specular_level_method(s.specular, d.roughness[m])))
                 .value("size", std::max(1u, spec->desc().width >> m))
+                .value("residual_at_half_size",
+                       m > 0 && specular_level_method(s.specular, d.roughness[m]) == SpecularMethod::hybrid &&
+                           hybrid_residual_at_half_size(s.specular, d.roughness[m], std::max(1u, spec->desc().width >> m)))
                 .end_object();
         j.end_array().end_object();
     }

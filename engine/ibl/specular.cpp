@@ -279,6 +279,11 @@ SpecularMethod specular_level_method(const SpecularSettings& s, float roughness)
     return roughness >= s.automatic_convolve_from ? SpecularMethod::convolve : SpecularMethod::hybrid;
 }
 
+bool hybrid_residual_at_half_size(const SpecularSettings& s, float roughness, uint32_t face) {
+    const double alpha = double(roughness) * roughness;
+    return s.hybrid_half_size_residual && face >= 16 && alpha * face >= 3.9;
+}
+
 uint32_t convolve_source_size(float roughness) {
     // The lobe's full width at half maximum in l is about 2.6 alpha radians.
     const double alpha = std::max(double(roughness) * roughness, 1e-4);
@@ -389,7 +394,9 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
                 uint32_t most_entries;
             };
             const uint32_t per_invocation = texels_per_invocation(programs.context());
-            const std::vector<ShaderDefine> defines{{"FACET_HYBRID_TEXELS", std::to_string(per_invocation)}};
+            const bool half = hybrid_residual_at_half_size(s, r, n);
+            const std::vector<ShaderDefine> defines{{"FACET_HYBRID_TEXELS", std::to_string(per_invocation)},
+                                                    {"FACET_HYBRID_PART", half ? "2" : "0"}};
             auto hybrid = programs.compute("ibl/specular_hybrid.comp", defines);
             if (!hybrid) return hybrid.error();
             std::vector<float> table;
@@ -402,6 +409,51 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
                                         vkCmdUpdateBuffer(pc.cmd(), pc.buffer(samples), 0, table.size() * sizeof(float),
                                                           table.data());
                                     });
+            if (half) {
+                const std::vector<ShaderDefine> part_defines{{"FACET_HYBRID_TEXELS", std::to_string(per_invocation)},
+                                                             {"FACET_HYBRID_PART", "1"}};
+                auto residual_part = programs.compute("ibl/specular_hybrid.comp", part_defines);
+                if (!residual_part) return residual_part.error();
+                ImageDesc d = graph.resource(specular).image_desc;
+                d.width = d.height = n / 2;
+                d.mip_levels = 1;
+                d.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+                ImageHandle halfres = graph.create_image(name + " residual", d);
+                graph.add_compute_pass(name + " residual", [&](PassBuilder& b) {
+                    b.sample(split->residual);
+                    b.read(samples);
+                    halfres = b.write_storage(halfres, ImageRange::mip(0));
+                }, [p = *residual_part, residual = split->residual, samples, halfres, n, params, per_invocation,
+                    sampler = cube_sampler.handle()](PassContext& pc) {
+                    p->bind(pc.cmd());
+                    const DescriptorWrite writes[] = {
+                        DescriptorWrite::sampled_image(pc.view(residual), sampler),
+                        DescriptorWrite::storage_image(pc.view(halfres, ImageRange::mip(0), specular_array_view)),
+                        DescriptorWrite::storage_buffer(pc.buffer(samples))};
+                    p->push_descriptors(pc.cmd(), writes);
+                    p->push_constants(pc.cmd(), params);
+                    dispatch_cube_faces(pc, *p, n / 2, 0, 6, per_invocation);
+                });
+                for (const FacePass& f : face_passes(name, n))
+                    graph.add_compute_pass(f.name, [&](PassBuilder& b) {
+                        b.sample(halfres);
+                        b.read(*list);
+                        if (coarse->index != list->index) b.read(*coarse);
+                        current = b.write_storage(current, ImageRange::mip(m));
+                    }, [p = *hybrid, halfres, list = *list, coarse = *coarse, specular, m, n, params, f, per_invocation,
+                        sampler = cube_sampler.handle()](PassContext& pc) {
+                        p->bind(pc.cmd());
+                        const DescriptorWrite writes[] = {
+                            DescriptorWrite::storage_buffer(pc.buffer(list)),
+                            DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(m), specular_array_view)),
+                            DescriptorWrite::storage_buffer(pc.buffer(coarse)),
+                            DescriptorWrite::sampled_image(pc.view(halfres), sampler)};
+                        p->push_descriptors(pc.cmd(), writes);
+                        p->push_constants(pc.cmd(), params);
+                        dispatch_cube_faces(pc, *p, n, f.first, f.count, per_invocation);
+                    });
+                continue;
+            }
             for (const FacePass& f : face_passes(name, n))
                 graph.add_compute_pass(f.name, [&](PassBuilder& b) {
                     b.sample(split->residual);
