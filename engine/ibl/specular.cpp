@@ -392,85 +392,74 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
                 float inverse_sample_weight;
                 float inverse_weight;
                 uint32_t most_entries;
+                uint32_t part;  // 0 whole, 1 the residual's part (half size), 2 the excess's + part 1's
             };
             const uint32_t per_invocation = texels_per_invocation(programs.context());
-            const bool half = hybrid_residual_at_half_size(s, r, n);
-            const std::vector<ShaderDefine> defines{{"FACET_HYBRID_TEXELS", std::to_string(per_invocation)},
-                                                    {"FACET_HYBRID_PART", half ? "2" : "0"}};
+            const std::vector<ShaderDefine> defines{{"FACET_HYBRID_TEXELS", std::to_string(per_invocation)}};
             auto hybrid = programs.compute("ibl/specular_hybrid.comp", defines);
             if (!hybrid) return hybrid.error();
             std::vector<float> table;
             const double sample_weight = hybrid_samples(s.hybrid_sample_count, r, split->residual_size, table);
+            const bool half = hybrid_residual_at_half_size(s, r, n);
             const Params params{uint32_t(table.size() / 4), r, float(1.0 / sample_weight),
-                                float(1.0 / specular_lobe_weight(r)), kMostExcessEntries};
+                                float(1.0 / specular_lobe_weight(r)), kMostExcessEntries, half ? 2u : 0u};
             BufferHandle samples = graph.create_buffer(name + " samples", {VkDeviceSize(table.size() * sizeof(float))});
             graph.add_transfer_pass(name + " samples", [&](PassBuilder& b) { samples = b.write(samples, Access::transfer_dst); },
                                     [samples, table](PassContext& pc) {
                                         vkCmdUpdateBuffer(pc.cmd(), pc.buffer(samples), 0, table.size() * sizeof(float),
                                                           table.data());
                                     });
+            // The residual's part at half size first (hybrid_residual_at_half_size), read by
+            // the level's passes; without it they read the residual itself in its place
+            // (a valid binding, not read).
+            ImageHandle half_residual = split->residual;
             if (half) {
-                const std::vector<ShaderDefine> part_defines{{"FACET_HYBRID_TEXELS", std::to_string(per_invocation)},
-                                                             {"FACET_HYBRID_PART", "1"}};
-                auto residual_part = programs.compute("ibl/specular_hybrid.comp", part_defines);
-                if (!residual_part) return residual_part.error();
                 ImageDesc d = graph.resource(specular).image_desc;
                 d.width = d.height = n / 2;
                 d.mip_levels = 1;
                 d.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-                ImageHandle halfres = graph.create_image(name + " residual", d);
+                half_residual = graph.create_image(name + " residual", d);
+                Params part = params;
+                part.part = 1;
                 graph.add_compute_pass(name + " residual", [&](PassBuilder& b) {
-                    b.sample(split->residual);
-                    b.read(samples);
-                    halfres = b.write_storage(halfres, ImageRange::mip(0));
-                }, [p = *residual_part, residual = split->residual, samples, halfres, n, params, per_invocation,
-                    sampler = cube_sampler.handle()](PassContext& pc) {
-                    p->bind(pc.cmd());
-                    const DescriptorWrite writes[] = {
-                        DescriptorWrite::sampled_image(pc.view(residual), sampler),
-                        DescriptorWrite::storage_image(pc.view(halfres, ImageRange::mip(0), specular_array_view)),
-                        DescriptorWrite::storage_buffer(pc.buffer(samples))};
-                    p->push_descriptors(pc.cmd(), writes);
-                    p->push_constants(pc.cmd(), params);
-                    dispatch_cube_faces(pc, *p, n / 2, 0, 6, per_invocation);
-                });
-                for (const FacePass& f : face_passes(name, n))
-                    graph.add_compute_pass(f.name, [&](PassBuilder& b) {
-                        b.sample(halfres);
-                        b.read(*list);
-                        if (coarse->index != list->index) b.read(*coarse);
-                        current = b.write_storage(current, ImageRange::mip(m));
-                    }, [p = *hybrid, halfres, list = *list, coarse = *coarse, specular, m, n, params, f, per_invocation,
-                        sampler = cube_sampler.handle()](PassContext& pc) {
-                        p->bind(pc.cmd());
-                        const DescriptorWrite writes[] = {
-                            DescriptorWrite::storage_buffer(pc.buffer(list)),
-                            DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(m), specular_array_view)),
-                            DescriptorWrite::storage_buffer(pc.buffer(coarse)),
-                            DescriptorWrite::sampled_image(pc.view(halfres), sampler)};
-                        p->push_descriptors(pc.cmd(), writes);
-                        p->push_constants(pc.cmd(), params);
-                        dispatch_cube_faces(pc, *p, n, f.first, f.count, per_invocation);
-                    });
-                continue;
-            }
-            for (const FacePass& f : face_passes(name, n))
-                graph.add_compute_pass(f.name, [&](PassBuilder& b) {
                     b.sample(split->residual);
                     b.read(*list);
                     if (coarse->index != list->index) b.read(*coarse);
                     b.read(samples);
+                    half_residual = b.write_storage(half_residual, ImageRange::mip(0));
+                }, [p = *hybrid, residual = split->residual, list = *list, coarse = *coarse, samples, half_residual, n,
+                    part, per_invocation, sampler = cube_sampler.handle()](PassContext& pc) {
+                    p->bind(pc.cmd());
+                    const DescriptorWrite writes[] = {
+                        DescriptorWrite::sampled_image(pc.view(residual), sampler),
+                        DescriptorWrite::storage_buffer(pc.buffer(list)),
+                        DescriptorWrite::storage_image(pc.view(half_residual, ImageRange::mip(0), specular_array_view)),
+                        DescriptorWrite::storage_buffer(pc.buffer(samples)),
+                        DescriptorWrite::storage_buffer(pc.buffer(coarse)),
+                        DescriptorWrite::sampled_image(pc.view(residual), sampler)};
+                    p->push_descriptors(pc.cmd(), writes);
+                    p->push_constants(pc.cmd(), part);
+                    dispatch_cube_faces(pc, *p, n / 2, 0, 6, per_invocation);
+                });
+            }
+            for (const FacePass& f : face_passes(name, n))
+                graph.add_compute_pass(f.name, [&](PassBuilder& b) {
+                    b.sample(split->residual);
+                    if (half) b.sample(half_residual);
+                    b.read(*list);
+                    if (coarse->index != list->index) b.read(*coarse);
+                    b.read(samples);
                     current = b.write_storage(current, ImageRange::mip(m));
-                }, [p = *hybrid, residual = split->residual, list = *list, coarse = *coarse, samples, specular, m, n, params, f,
-                    per_invocation,
-                    sampler = cube_sampler.handle()](PassContext& pc) {
+                }, [p = *hybrid, residual = split->residual, half_residual, list = *list, coarse = *coarse, samples, specular,
+                    m, n, params, f, per_invocation, sampler = cube_sampler.handle()](PassContext& pc) {
                     p->bind(pc.cmd());
                     const DescriptorWrite writes[] = {
                         DescriptorWrite::sampled_image(pc.view(residual), sampler),
                         DescriptorWrite::storage_buffer(pc.buffer(list)),
                         DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(m), specular_array_view)),
                         DescriptorWrite::storage_buffer(pc.buffer(samples)),
-                        DescriptorWrite::storage_buffer(pc.buffer(coarse))};
+                        DescriptorWrite::storage_buffer(pc.buffer(coarse)),
+                        DescriptorWrite::sampled_image(pc.view(half_residual), sampler)};
                     p->push_descriptors(pc.cmd(), writes);
                     p->push_constants(pc.cmd(), params);
                     dispatch_cube_faces(pc, *p, n, f.first, f.count, per_invocation);

@@ -12,41 +12,28 @@
 #include "ibl/cube.glsl"
 #include "facet/brdf.glsl"
 
-// FACET_HYBRID_PART: 0 (default) both parts; 1 the residual's part only (at half the level's
-// face size: the lobe spans several of its texels); 2 the excess's part plus the residual's
-// part read from part 1's cube (`half_residual`, bilinear, seamless).
-#ifndef FACET_HYBRID_PART
-#define FACET_HYBRID_PART 0
-#endif
-
+// `part` (a push constant, so that one pipeline does all three): 0, the whole level; 1, the
+// residual's part alone, into a cube of half the level's face size (the lobe spans several
+// of its texels); 2, the excess's part plus the residual's read bilinearly (seamless) from
+// part 1's cube, `half_residual`. Every binding is given whatever the part.
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-#if FACET_HYBRID_PART != 2
 layout(binding = 0) uniform samplerCube residual;
-#endif
-#if FACET_HYBRID_PART != 1
 layout(std430, binding = 1) readonly buffer List {
     uint count;
     uint pad0, pad1, pad2;
     vec4 entries[];
 } list;
-#endif
 layout(binding = 2, rgba32f) uniform writeonly image2DArray level;
-#if FACET_HYBRID_PART != 2
 // The filtered samples, the same for every texel (n = v): l in the tangent frame of n
 // (z along n, so n.l = z) and the mip that matches its solid angle; made on the host.
 layout(std430, binding = 3) readonly buffer Samples { vec4 samples[]; };
-#endif
-#if FACET_HYBRID_PART != 1
 // The same excess in blocks twice as wide, read when `list` has more than most_entries.
 layout(std430, binding = 4) readonly buffer Coarse {
     uint count;
     uint pad0, pad1, pad2;
     vec4 entries[];
 } coarse;
-#endif
-#if FACET_HYBRID_PART == 2
 layout(binding = 5) uniform samplerCube half_residual;
-#endif
 
 #ifndef FACET_HYBRID_TEXELS
 #define FACET_HYBRID_TEXELS 1
@@ -59,6 +46,7 @@ layout(push_constant) uniform Params {
     float inverse_sample_weight;  // 1 / sum of the samples' n.l
     float inverse_weight;         // 1 / W
     uint most_entries;
+    uint part;
 } params;
 
 void main() {
@@ -75,23 +63,23 @@ void main() {
         sum[k] = vec3(0.0);
         excess[k] = vec3(0.0);
     }
-#if FACET_HYBRID_PART != 2
-    for (uint i = 0u; i < params.sample_count; ++i) {
-        vec4 t = samples[i];
-        for (uint k = 0u; k < TEXELS; ++k) {
-            vec3 L = t.x * tangent_x[k] + t.y * tangent_y[k] + t.z * N[k];
-            sum[k] += textureLod(residual, L, t.w).rgb * t.z;
+    if (params.part == 2u) {
+        for (uint k = 0u; k < TEXELS; ++k) sum[k] = textureLod(half_residual, N[k], 0.0).rgb;
+    } else {
+        for (uint i = 0u; i < params.sample_count; ++i) {
+            vec4 t = samples[i];
+            for (uint k = 0u; k < TEXELS; ++k) {
+                vec3 L = t.x * tangent_x[k] + t.y * tangent_y[k] + t.z * N[k];
+                sum[k] += textureLod(residual, L, t.w).rgb * t.z;
+            }
         }
+        for (uint k = 0u; k < TEXELS; ++k) sum[k] *= params.inverse_sample_weight;
     }
-    for (uint k = 0u; k < TEXELS; ++k) sum[k] *= params.inverse_sample_weight;
-#else
-    for (uint k = 0u; k < TEXELS; ++k) sum[k] = textureLod(half_residual, N[k], 0.0).rgb;
-#endif
-#if FACET_HYBRID_PART == 1
-    for (uint k = 0u; k < TEXELS; ++k)
-        if (x0 + k < n) imageStore(level, ivec3(x0 + k, id.y, id.z), vec4(sum[k], 1.0));
-    return;
-#else
+    if (params.part == 1u) {
+        for (uint k = 0u; k < TEXELS; ++k)
+            if (x0 + k < n) imageStore(level, ivec3(x0 + k, id.y, id.z), vec4(sum[k], 1.0));
+        return;
+    }
     // D(h) (n.l) with (n.h)^2 = (1 + n.l) / 2 for h = normalize(n + l): no normalisation
     // per entry; the constant alpha^2 / pi is applied once, with 1 / W.
     float alpha = max(params.roughness * params.roughness, MIN_ALPHA);
@@ -119,5 +107,4 @@ void main() {
     for (uint k = 0u; k < TEXELS; ++k)
         if (x0 + k < n)
             imageStore(level, ivec3(x0 + k, id.y, id.z), vec4(sum[k] + excess[k] * excess_scale, 1.0));
-#endif
 }

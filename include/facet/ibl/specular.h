@@ -44,7 +44,8 @@ struct SpecularSettings {
     // half size (hybrid_residual_at_half_size); the excess stays exact at the level's size.
     // A quarter of the samples: a 1024x512 bake's levels 1 and 2 89 -> 37 ms and 21 -> 12 ms
     // on lavapipe, and their error against the brute-force truth 0.04-1.40% before, 0.03-1.36%
-    // after (venice_sunset_1k 0.53 -> 0.62% at level 1, the others equal or better).
+    // after (venice_sunset_1k 0.53 -> 0.62% at level 1, the others equal or better). One
+    // pipeline does both parts and the whole (a push constant chooses).
     bool hybrid_half_size_residual = true;
     // Model no more than the scene needs: levels that no lookup with roughness >= this
     // reaches (trilinear reads floor(roughness x (levels - 1)) and the level above) are
