@@ -243,14 +243,14 @@ std::vector<uint8_t> exr_header_bytes(uint32_t width, uint32_t height) {
 void exr_zip_predict(const std::vector<uint8_t>& raw, std::vector<uint8_t>& out) {
     const size_t n = raw.size(), half = (n + 1) / 2;
     out.resize(n);
-    for (size_t i = 0; i < half; ++i) out[i] = raw[2 * i];
-    for (size_t i = 0; 2 * i + 1 < n; ++i) out[half + i] = raw[2 * i + 1];
-    uint8_t previous = out[0];
-    for (size_t i = 1; i < n; ++i) {
-        const uint8_t value = out[i];
-        out[i] = uint8_t(value - previous + 128);
-        previous = value;
-    }
+    if (n == 0) return;
+    // Each output from the input alone (no running value), so that the loops vectorise.
+    const uint8_t* in = raw.data();
+    uint8_t* to = out.data();
+    to[0] = in[0];
+    for (size_t i = 1; i < half; ++i) to[i] = uint8_t(in[2 * i] - in[2 * i - 2] + 128);
+    if (n > 1) to[half] = uint8_t(in[1] - in[2 * (half - 1)] + 128);
+    for (size_t i = 1; half + i < n; ++i) to[half + i] = uint8_t(in[2 * i + 1] - in[2 * i - 1] + 128);
 }
 
 }  // namespace
