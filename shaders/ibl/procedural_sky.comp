@@ -16,16 +16,12 @@ layout(push_constant) uniform Params {
     vec4 ground_radiance;           // rgb
 } params;
 
-vec3 sky_radiance(vec3 d) {
+// Radiance in direction d; `below` and `above` are its row's ground and sky (they depend on
+// d.y alone, so main() makes them once per row of taps). Branch-free: lavapipe runs both
+// sides of a branch for a mixed SIMD row, so every lane computes each case and selects.
+vec3 sky_radiance(vec3 d, vec3 below, vec3 above) {
     vec3 sun = params.sun_direction_cos_radius.xyz;
     float cos_sun = dot(d, sun);
-    if (cos_sun >= params.sun_direction_cos_radius.w) return params.sun_radiance_glow.rgb;
-    if (d.y < 0.0) {
-        // Ground, fading into the horizon over a few degrees.
-        float t = clamp(-d.y / 0.05, 0.0, 1.0);
-        return mix(params.horizon_radiance.rgb, params.ground_radiance.rgb, t);
-    }
-    vec3 sky = mix(params.horizon_radiance.rgb, params.zenith_radiance.rgb, sqrt(d.y));
     // Forward-scattering glow around the sun (a smooth lobe, not a second light).
     float glow = max(cos_sun, 0.0);  // its 64th power, by six squarings
     glow *= glow;
@@ -34,7 +30,8 @@ vec3 sky_radiance(vec3 d) {
     glow *= glow;
     glow *= glow;
     glow *= glow;
-    return sky + glow * params.sun_radiance_glow.a * params.horizon_radiance.rgb;
+    vec3 open_sky = d.y < 0.0 ? below : above + glow * params.sun_radiance_glow.a * params.horizon_radiance.rgb;
+    return cos_sun >= params.sun_direction_cos_radius.w ? params.sun_radiance_glow.rgb : open_sky;
 }
 
 void main() {
@@ -54,8 +51,11 @@ void main() {
         float v = (float(texel.y) + (float(j) + 0.5) / 4.0) / float(size.y);
         float theta = (0.5 - v) * facet_pi;
         float c = cos(theta), s = sin(theta);
+        // Ground, fading into the horizon over a few degrees; the sky from horizon to zenith.
+        vec3 below = mix(params.horizon_radiance.rgb, params.ground_radiance.rgb, clamp(-s / 0.05, 0.0, 1.0));
+        vec3 above = mix(params.horizon_radiance.rgb, params.zenith_radiance.rgb, sqrt(max(s, 0.0)));
         for (int i = 0; i < 4; ++i)
-            sum += sky_radiance(vec3(c * longitude_sin_cos[i].y, s, c * longitude_sin_cos[i].x));
+            sum += sky_radiance(vec3(c * longitude_sin_cos[i].y, s, c * longitude_sin_cos[i].x), below, above);
     }
     imageStore(out_sky, texel, vec4(sum / 16.0, 1.0));
 }
