@@ -20,7 +20,12 @@ void dispatch_cube_faces(PassContext& pc, const Pipeline& pipeline, uint32_t n, 
     const auto local = pipeline.workgroup_size();
     if (local[2] != 1) throw UsageError("dispatch_cube_faces: the shader's local size in z must be 1");
     const uint32_t columns = (n + texels_per_invocation_x - 1) / texels_per_invocation_x;
-    vkCmdDispatchBase(pc.cmd(), 0, 0, first, group_count(columns, local[0]), group_count(n, local[1]), count);
+    // Rows of fewer groups than a workgroup is wide are taken row after row by each
+    // workgroup's invocations (shaders/ibl/cube_faces_dispatch.glsl): no idle lanes.
+    if (columns >= local[0])
+        vkCmdDispatchBase(pc.cmd(), 0, 0, first, group_count(columns, local[0]), group_count(n, local[1]), count);
+    else
+        vkCmdDispatchBase(pc.cmd(), 0, 0, first, group_count(columns * n, local[0] * local[1]), 1, count);
 }
 
 uint32_t texels_per_invocation(const Context& context) {

@@ -23,6 +23,7 @@
 const uint TEXELS = FACET_IRRADIANCE_TEXELS;
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+#include "ibl/cube_faces_dispatch.glsl"  // after the local size: it reads gl_WorkGroupSize
 layout(std430, binding = 0) readonly buffer Texels { vec4 texels[]; };
 layout(binding = 1, rgba32f) uniform writeonly image2DArray irradiance;
 
@@ -59,8 +60,8 @@ float flat_cap_cosine(float cos_theta, float s, float inverse_s) {
 
 void main() {
     uint n = uint(imageSize(irradiance).x);
-    uvec3 id = gl_GlobalInvocationID;
-    uint x0 = TEXELS * id.x;
+    uvec3 id = cube_texel_group(n, TEXELS);
+    uint x0 = id.x;
     if (x0 >= n || id.y >= n) return;
     vec3 normal[TEXELS], sum[TEXELS];
     float weight_sum[TEXELS];

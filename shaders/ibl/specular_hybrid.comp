@@ -17,6 +17,7 @@
 // of its texels); 2, the excess's part plus the residual's read bilinearly (seamless) from
 // part 1's cube, `half_residual`. Every binding is given whatever the part.
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+#include "ibl/cube_faces_dispatch.glsl"  // after the local size: it reads gl_WorkGroupSize
 layout(binding = 0) uniform samplerCube residual;
 layout(std430, binding = 1) readonly buffer List {
     uint count;
@@ -51,8 +52,8 @@ layout(push_constant) uniform Params {
 
 void main() {
     uint n = uint(imageSize(level).x);
-    uvec3 id = gl_GlobalInvocationID;
-    uint x0 = TEXELS * id.x;
+    uvec3 id = cube_texel_group(n, TEXELS);
+    uint x0 = id.x;
     if (x0 >= n || id.y >= n) return;
     vec3 N[TEXELS], tangent_x[TEXELS], tangent_y[TEXELS], sum[TEXELS], excess[TEXELS];
     for (uint k = 0u; k < TEXELS; ++k) {

@@ -8,6 +8,7 @@
 #include "ibl/sampling.glsl"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+#include "ibl/cube_faces_dispatch.glsl"  // after the local size: it reads gl_WorkGroupSize
 layout(binding = 0) uniform samplerCube environment;
 layout(binding = 1, rgba32f) uniform writeonly image2DArray level;
 
@@ -20,7 +21,7 @@ layout(push_constant) uniform Params {
 
 void main() {
     uint n = uint(imageSize(level).x);
-    uvec3 id = gl_GlobalInvocationID;
+    uvec3 id = cube_texel_group(n, 1u);
     if (id.x >= n || id.y >= n) return;
     vec3 N = normalize(cube_direction(id.z, (vec2(id.xy) + 0.5) / float(n)));
     vec3 up = abs(N.z) < 0.999 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0);
