@@ -1,6 +1,7 @@
 #include <facet/ibl/specular.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 
@@ -256,6 +257,16 @@ double hybrid_samples(uint32_t count, float roughness, uint32_t source_size, std
     return weight;
 }
 
+// specular_hybrid.comp's bindings: the residual cube, the excess list, `output` (a level, or
+// part 1's half-size cube), the samples, the coarser list, and `half` (part 1's cube where
+// the level reads it; the residual, unread, elsewhere).
+std::array<DescriptorWrite, 6> hybrid_writes(PassContext& pc, ImageHandle residual, BufferHandle list, BufferHandle coarse,
+                                             BufferHandle samples, VkImageView output, ImageHandle half, VkSampler sampler) {
+    return {DescriptorWrite::sampled_image(pc.view(residual), sampler), DescriptorWrite::storage_buffer(pc.buffer(list)),
+            DescriptorWrite::storage_image(output), DescriptorWrite::storage_buffer(pc.buffer(samples)),
+            DescriptorWrite::storage_buffer(pc.buffer(coarse)), DescriptorWrite::sampled_image(pc.view(half), sampler)};
+}
+
 }  // namespace
 
 double specular_lobe_weight(float roughness) {
@@ -430,14 +441,9 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
                 }, [p = *hybrid, residual = split->residual, list = *list, coarse = *coarse, samples, half_residual, n,
                     part, per_invocation, sampler = cube_sampler.handle()](PassContext& pc) {
                     p->bind(pc.cmd());
-                    const DescriptorWrite writes[] = {
-                        DescriptorWrite::sampled_image(pc.view(residual), sampler),
-                        DescriptorWrite::storage_buffer(pc.buffer(list)),
-                        DescriptorWrite::storage_image(pc.view(half_residual, ImageRange::mip(0), specular_array_view)),
-                        DescriptorWrite::storage_buffer(pc.buffer(samples)),
-                        DescriptorWrite::storage_buffer(pc.buffer(coarse)),
-                        DescriptorWrite::sampled_image(pc.view(residual), sampler)};
-                    p->push_descriptors(pc.cmd(), writes);
+                    p->push_descriptors(pc.cmd(), hybrid_writes(pc, residual, list, coarse, samples,
+                                                                pc.view(half_residual, ImageRange::mip(0), specular_array_view),
+                                                                residual, sampler));
                     p->push_constants(pc.cmd(), part);
                     dispatch_cube_faces(pc, *p, n / 2, 0, 6, per_invocation);
                 });
@@ -453,14 +459,9 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
                 }, [p = *hybrid, residual = split->residual, half_residual, list = *list, coarse = *coarse, samples, specular,
                     m, n, params, f, per_invocation, sampler = cube_sampler.handle()](PassContext& pc) {
                     p->bind(pc.cmd());
-                    const DescriptorWrite writes[] = {
-                        DescriptorWrite::sampled_image(pc.view(residual), sampler),
-                        DescriptorWrite::storage_buffer(pc.buffer(list)),
-                        DescriptorWrite::storage_image(pc.view(specular, ImageRange::mip(m), specular_array_view)),
-                        DescriptorWrite::storage_buffer(pc.buffer(samples)),
-                        DescriptorWrite::storage_buffer(pc.buffer(coarse)),
-                        DescriptorWrite::sampled_image(pc.view(half_residual), sampler)};
-                    p->push_descriptors(pc.cmd(), writes);
+                    p->push_descriptors(pc.cmd(), hybrid_writes(pc, residual, list, coarse, samples,
+                                                                pc.view(specular, ImageRange::mip(m), specular_array_view),
+                                                                half_residual, sampler));
                     p->push_constants(pc.cmd(), params);
                     dispatch_cube_faces(pc, *p, n, f.first, f.count, per_invocation);
                 });

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <climits>
 #include <cstring>
+#include <functional>
 #include <string_view>
 #include <thread>
 #include <utility>
@@ -78,6 +79,25 @@ struct DeflateStream {
 };
 
 
+// How many runs an encoder splits its `units` (rows, chunks) into: `parts` when given,
+// else one a core (up to 4) for images of at least `min_bytes` whose runs get at least
+// `min_units` each, else one; never more than `units`.
+uint32_t part_count(uint32_t parts, uint32_t units, size_t bytes, size_t min_bytes, uint32_t min_units) {
+    const uint32_t cores = std::max(1u, std::min(4u, std::thread::hardware_concurrency()));
+    if (parts == 0) parts = bytes < min_bytes ? 1u : std::min(cores, units / min_units);
+    return std::max(1u, std::min(parts, units));
+}
+
+// work(k, first, last) for each of the `parts` runs of [0, units): run 0 on this thread
+// (an encoder's first run may write straight to its sink), the others on threads of their own.
+void run_in_parts(uint32_t parts, uint32_t units, const std::function<void(uint32_t, uint32_t, uint32_t)>& work) {
+    auto first = [&](uint32_t k) { return uint32_t(uint64_t(units) * k / parts); };
+    std::vector<std::thread> helpers;
+    for (uint32_t k = 1; k < parts; ++k) helpers.emplace_back(work, k, first(k), first(k + 1));
+    work(0, 0, first(1));
+    for (std::thread& t : helpers) t.join();
+}
+
 // One part of a PNG's image data: rows [y0, y1) Sub-filtered and deflated as raw deflate
 // (no zlib header or check value), ended with a sync flush (byte-aligned, so that the next
 // part's blocks follow) or, for the last part, with the final block.
@@ -140,21 +160,12 @@ Status write_png(ByteSink& out, uint32_t width, uint32_t height, const uint8_t* 
     // as there are cores (up to 4) for images of 256 KiB or more: each part's raw deflate
     // ends byte-aligned and the next one follows (RFC 1951 blocks concatenate); the check
     // value is the parts' adler32s combined. royal_esplanade_1k's 1024x512 preview in two
-    // parts: 0.3% larger (the second part starts without the first's window).
-    const size_t bytes = size_t(width) * 4 * height;
-    const uint32_t cores = std::max(1u, std::min(4u, std::thread::hardware_concurrency()));
-    if (parts == 0) parts = bytes < (size_t(1) << 18) ? 1u : std::max(1u, std::min(cores, height / 64));
-    parts = std::min(parts, height);
+    // parts: 26 bytes larger (the second part starts without the first's window).
+    parts = part_count(parts, height, size_t(width) * 4 * height, size_t(1) << 18, 64);
     std::vector<PngPart> deflated(parts);
-    {
-        std::vector<std::thread> helpers;
-        auto rows = [&](uint32_t k) { return uint32_t(uint64_t(height) * k / parts); };
-        for (uint32_t k = 1; k < parts; ++k)
-            helpers.emplace_back(deflate_png_rows, rgba, width, rows(k), rows(k + 1), k + 1 == parts,
-                                 std::ref(deflated[k]));
-        deflate_png_rows(rgba, width, 0, rows(1), parts == 1, deflated[0]);
-        for (std::thread& t : helpers) t.join();
-    }
+    run_in_parts(parts, height, [&](uint32_t k, uint32_t y0, uint32_t y1) {
+        deflate_png_rows(rgba, width, y0, y1, k + 1 == parts, deflated[k]);
+    });
     // CMF 0x78 (deflate, 32 KiB window), FLG 0x01 (fastest; the header's check bits).
     std::vector<uint8_t> idat = {0x78, 0x01};
     uLong adler = 1;
@@ -332,20 +343,11 @@ Status write_exr(ByteSink& out, uint32_t width, uint32_t height, const float* rg
 
     // The chunks in `parts` runs, one a thread: the first goes straight to `out`, the
     // others are kept in memory and put after it.
-    const size_t bytes = size_t(width) * height * 16;
-    const uint32_t cores = std::max(1u, std::min(4u, std::thread::hardware_concurrency()));
-    if (parts == 0) parts = bytes < (size_t(1) << 20) ? 1u : std::max(1u, std::min(cores, chunks / 4));
-    parts = std::max(1u, std::min(parts, chunks));
+    parts = part_count(parts, chunks, size_t(width) * height * 16, size_t(1) << 20, 4);
     std::vector<ExrPart> compressed(parts);
-    {
-        auto first_chunk = [&](uint32_t k) { return uint32_t(uint64_t(chunks) * k / parts); };
-        std::vector<std::thread> helpers;
-        for (uint32_t k = 1; k < parts; ++k)
-            helpers.emplace_back(compress_exr_chunks, width, height, rgba, first_chunk(k), first_chunk(k + 1), nullptr,
-                                 std::ref(compressed[k]));
-        compress_exr_chunks(width, height, rgba, 0, first_chunk(1), &out, compressed[0]);
-        for (std::thread& t : helpers) t.join();
-    }
+    run_in_parts(parts, chunks, [&](uint32_t k, uint32_t first, uint32_t last) {
+        compress_exr_chunks(width, height, rgba, first, last, k == 0 ? &out : nullptr, compressed[k]);
+    });
     uint64_t at = header.size() + offsets.size() * 8;
     size_t k = 0;
     for (const ExrPart& part : compressed) {
