@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include <facet/core/shared_constants.h>
 #include <facet/gpu/context.h>
@@ -30,6 +31,30 @@ void dispatch_cube_faces(PassContext& pc, const Pipeline& pipeline, uint32_t n, 
 
 uint32_t texels_per_invocation(const Context& context) {
     return context.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 8u : 1u;
+}
+
+uint32_t list_lanes(const Context& context) {
+    if (context.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU) return 1;
+    VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+    VkPhysicalDeviceSubgroupSizeControlProperties size_control{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_SIZE_CONTROL_PROPERTIES};
+    subgroup.pNext = &size_control;
+    VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    properties.pNext = &subgroup;
+    vkGetPhysicalDeviceProperties2(context.physical_device(), &properties);
+    const uint32_t size = subgroup.subgroupSize;
+    // A varying size could leave a subgroup partly filled, and a broadcast from an absent
+    // lane undefined: only a device with one size (lavapipe: its vector width in floats).
+    const bool one_size = size_control.minSubgroupSize == size && size_control.maxSubgroupSize == size;
+    const bool usable = (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
+                        (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_BALLOT_BIT) && one_size && size > 1 &&
+                        64 % size == 0;
+    return usable ? size : 1u;
+}
+
+std::vector<ShaderDefine> list_shader_defines(const Context& context, const char* texels_define) {
+    return {{texels_define, std::to_string(texels_per_invocation(context))},
+            {"FACET_LIST_LANES", std::to_string(list_lanes(context))}};
 }
 
 Result<CubeTexelList> add_cube_texel_list_pass(RenderGraph& graph, ProgramCache& programs, ImageHandle environment,

@@ -4,10 +4,12 @@
 // (shaders/ibl/cube_texels.comp: radiance-weighted direction, cap spread, radiance x
 // solid angle, solid angle). Shared helpers for passes that write cube levels.
 #include <cstdint>
+#include <vector>
 
 #include <facet/core/result.h>
 #include <facet/core/shared_constants.h>
 #include <facet/graph/render_graph.h>
+#include <facet/shader/compiler.h>
 
 namespace facet {
 
@@ -46,6 +48,13 @@ void dispatch_cube_faces(PassContext& pc, const Pipeline& pipeline, uint32_t n, 
 // CPU device (lavapipe reads a buffer lane by lane; each read then serves eight texels),
 // 1 on a GPU, which keeps its parallelism.
 uint32_t texels_per_invocation(const Context& context);
+// Lanes of a subgroup that read a list together in those shaders (shaders/ibl/list_lanes.glsl):
+// the subgroup size on a CPU device whose compute subgroups are one fixed size dividing the
+// 8 x 8 workgroup and can broadcast, 1 elsewhere (each lane reads every entry itself).
+uint32_t list_lanes(const Context& context);
+// Those shaders' defines: `texels_define` (their TEXELS) = texels_per_invocation, and
+// FACET_LIST_LANES = list_lanes.
+std::vector<ShaderDefine> list_shader_defines(const Context& context, const char* texels_define);
 
 constexpr VkImageViewType cube_array_view = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
 

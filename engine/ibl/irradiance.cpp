@@ -42,10 +42,9 @@ Result<ImageHandle> add_texel_convolution(RenderGraph& graph, ProgramCache& prog
     const bool blur = s.method == IrradianceMethod::blur;
     // Narrow caps (every list but a tiny input's) cross a horizon as flat disks: lavapipe
     // pays for the exact form at every entry, whichever normal needs it.
-    std::vector<ShaderDefine> defines;
+    std::vector<ShaderDefine> defines = list_shader_defines(programs.context(), "FACET_IRRADIANCE_TEXELS");
     if (!blur && list->max_spread < kNarrowCapSpread) defines.push_back({"FACET_NARROW_CAPS", "1"});
     const uint32_t per_invocation = texels_per_invocation(programs.context());
-    defines.push_back({"FACET_IRRADIANCE_TEXELS", std::to_string(per_invocation)});
     auto convolve = programs.compute("ibl/irradiance_convolve.comp", defines);
     if (!convolve) return convolve.error();
     const Params params{list->count, blur ? 1u : 0u, s.blur_sigma};

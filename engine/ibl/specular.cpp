@@ -360,7 +360,7 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
                 float roughness;
             };
             const uint32_t per_invocation = texels_per_invocation(programs.context());
-            const std::vector<ShaderDefine> defines{{"FACET_CONVOLVE_TEXELS", std::to_string(per_invocation)}};
+            const std::vector<ShaderDefine> defines = list_shader_defines(programs.context(), "FACET_CONVOLVE_TEXELS");
             auto conv = programs.compute("ibl/specular_convolve.comp", defines);
             if (!conv) return conv.error();
             const uint32_t source = convolve_source_size(r);
@@ -406,7 +406,7 @@ Result<ImageHandle> add_specular_passes(RenderGraph& graph, ProgramCache& progra
                 uint32_t part;  // 0 whole, 1 the residual's part (half size), 2 the excess's + part 1's
             };
             const uint32_t per_invocation = texels_per_invocation(programs.context());
-            const std::vector<ShaderDefine> defines{{"FACET_HYBRID_TEXELS", std::to_string(per_invocation)}};
+            const std::vector<ShaderDefine> defines = list_shader_defines(programs.context(), "FACET_HYBRID_TEXELS");
             auto hybrid = programs.compute("ibl/specular_hybrid.comp", defines);
             if (!hybrid) return hybrid.error();
             std::vector<float> table;

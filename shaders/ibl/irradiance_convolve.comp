@@ -24,6 +24,7 @@ const uint TEXELS = FACET_IRRADIANCE_TEXELS;
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "ibl/cube_faces_dispatch.glsl"  // after the local size: it reads gl_WorkGroupSize
+#include "ibl/list_lanes.glsl"
 layout(std430, binding = 0) readonly buffer Texels { vec4 texels[]; };
 layout(binding = 1, rgba32f) uniform writeonly image2DArray irradiance;
 
@@ -62,7 +63,7 @@ void main() {
     uint n = uint(imageSize(irradiance).x);
     uvec3 id = cube_texel_group(n, TEXELS);
     uint x0 = id.x;
-    if (x0 >= n || id.y >= n) return;
+    bool inside = x0 < n && id.y < n;  // the others read the list with their subgroup, then stop
     vec3 normal[TEXELS], sum[TEXELS];
     float weight_sum[TEXELS];
     for (uint k = 0u; k < TEXELS; ++k) {
@@ -71,26 +72,32 @@ void main() {
         weight_sum[k] = 0.0;
     }
     float inv_sigma2 = 1.0 / max(params.sigma * params.sigma, 1e-6);
-    for (uint i = 0u; i < params.texel_count; ++i) {
-        vec4 direction_spread = texels[2u * i];
-        vec4 radiance_solid_angle_and_solid_angle = texels[2u * i + 1u];
-        vec3 radiance_solid_angle = radiance_solid_angle_and_solid_angle.rgb;
-        float sin2_sigma = max(direction_spread.w, 1e-12);
+    uint count = params.texel_count;
+    for (uint base = 0u; base < count; base += LIST_STEP) {
+        uint lane = list_index(base, count);
+        vec4 lane_direction = texels[2u * lane], lane_radiance = texels[2u * lane + 1u];
+        for (uint j = 0u; j < list_chunk(base, count); ++j) {
+            vec4 direction_spread = list_entry(lane_direction, j);
+            vec4 radiance_solid_angle_and_solid_angle = list_entry(lane_radiance, j);
+            vec3 radiance_solid_angle = radiance_solid_angle_and_solid_angle.rgb;
+            float sin2_sigma = max(direction_spread.w, 1e-12);
 #ifdef FACET_NARROW_CAPS
-        float s = sqrt(sin2_sigma);
-        float inverse_s = 1.0 / s;
+            float s = sqrt(sin2_sigma);
+            float inverse_s = 1.0 / s;
 #endif
-        for (uint k = 0u; k < TEXELS; ++k) {
-            float c = dot(normal[k], direction_spread.xyz);
+            for (uint k = 0u; k < TEXELS; ++k) {
+                float c = dot(normal[k], direction_spread.xyz);
 #ifdef FACET_NARROW_CAPS
-            float w = flat_cap_cosine(c, s, inverse_s);
+                float w = flat_cap_cosine(c, s, inverse_s);
 #else
-            float w = params.gaussian == 0u ? clipped_cap_cosine(c, sin2_sigma) : exp((c - 1.0) * inv_sigma2);
+                float w = params.gaussian == 0u ? clipped_cap_cosine(c, sin2_sigma) : exp((c - 1.0) * inv_sigma2);
 #endif
-            sum[k] += w * radiance_solid_angle;
-            weight_sum[k] += w * radiance_solid_angle_and_solid_angle.w;
+                sum[k] += w * radiance_solid_angle;
+                weight_sum[k] += w * radiance_solid_angle_and_solid_angle.w;
+            }
         }
     }
+    if (!inside) return;
     // Normalised by the discrete kernel's own integral over the sphere (which tends to pi
     // for the clamped cosine), so a uniform sky is exact at any resolution.
     for (uint k = 0u; k < TEXELS; ++k)

@@ -18,6 +18,7 @@ const uint TEXELS = FACET_CONVOLVE_TEXELS;
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "ibl/cube_faces_dispatch.glsl"  // after the local size: it reads gl_WorkGroupSize
+#include "ibl/list_lanes.glsl"
 layout(std430, binding = 0) readonly buffer Texels { vec4 texels[]; };
 layout(binding = 1, rgba32f) uniform writeonly image2DArray level;
 
@@ -30,7 +31,7 @@ void main() {
     uint n = uint(imageSize(level).x);
     uvec3 id = cube_texel_group(n, TEXELS);
     uint x0 = id.x;
-    if (x0 >= n || id.y >= n) return;
+    bool inside = x0 < n && id.y < n;  // the others read the list with their subgroup, then stop
     vec3 normal[TEXELS], sum[TEXELS];
     float weight_sum[TEXELS];
     for (uint k = 0u; k < TEXELS; ++k) {
@@ -38,18 +39,24 @@ void main() {
         sum[k] = vec3(0.0);
         weight_sum[k] = 0.0;
     }
-    for (uint i = 0u; i < params.texel_count; ++i) {
-        vec3 l = texels[2u * i].xyz;
-        vec4 radiance_solid_angle = texels[2u * i + 1u];
-        for (uint k = 0u; k < TEXELS; ++k) {
-            float NdotL = dot(normal[k], l);
-            vec3 h = normalize(normal[k] + l);
-            // Below the horizon the weight is 0 (a select, not a branch: lavapipe runs both).
-            float w = NdotL > 0.0 ? D_GGX(dot(normal[k], h), params.roughness) * NdotL : 0.0;
-            sum[k] += w * radiance_solid_angle.rgb;
-            weight_sum[k] += w * radiance_solid_angle.w;
+    uint count = params.texel_count;
+    for (uint base = 0u; base < count; base += LIST_STEP) {
+        uint lane = list_index(base, count);
+        vec4 lane_direction = texels[2u * lane], lane_radiance = texels[2u * lane + 1u];
+        for (uint j = 0u; j < list_chunk(base, count); ++j) {
+            vec3 l = list_entry(lane_direction, j).xyz;
+            vec4 radiance_solid_angle = list_entry(lane_radiance, j);
+            for (uint k = 0u; k < TEXELS; ++k) {
+                float NdotL = dot(normal[k], l);
+                vec3 h = normalize(normal[k] + l);
+                // Below the horizon the weight is 0 (a select, not a branch: lavapipe runs both).
+                float w = NdotL > 0.0 ? D_GGX(dot(normal[k], h), params.roughness) * NdotL : 0.0;
+                sum[k] += w * radiance_solid_angle.rgb;
+                weight_sum[k] += w * radiance_solid_angle.w;
+            }
         }
     }
+    if (!inside) return;
     for (uint k = 0u; k < TEXELS; ++k)
         if (x0 + k < n)
             imageStore(level, ivec3(x0 + k, id.y, id.z), vec4(sum[k] / max(weight_sum[k], 1e-30), 1.0));

@@ -18,6 +18,7 @@
 // part 1's cube, `half_residual`. Every binding is given whatever the part.
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 #include "ibl/cube_faces_dispatch.glsl"  // after the local size: it reads gl_WorkGroupSize
+#include "ibl/list_lanes.glsl"
 layout(binding = 0) uniform samplerCube residual;
 layout(std430, binding = 1) readonly buffer List {
     uint count;
@@ -54,7 +55,7 @@ void main() {
     uint n = uint(imageSize(level).x);
     uvec3 id = cube_texel_group(n, TEXELS);
     uint x0 = id.x;
-    if (x0 >= n || id.y >= n) return;
+    bool inside = x0 < n && id.y < n;  // the others read the lists with their subgroup, then stop
     vec3 N[TEXELS], tangent_x[TEXELS], tangent_y[TEXELS], sum[TEXELS], excess[TEXELS];
     for (uint k = 0u; k < TEXELS; ++k) {
         N[k] = normalize(cube_direction(id.z, (vec2(x0 + k, id.y) + 0.5) / float(n)));
@@ -67,18 +68,21 @@ void main() {
     if (params.part == 2u) {
         for (uint k = 0u; k < TEXELS; ++k) sum[k] = textureLod(half_residual, N[k], 0.0).rgb;
     } else {
-        for (uint i = 0u; i < params.sample_count; ++i) {
-            vec4 t = samples[i];
-            for (uint k = 0u; k < TEXELS; ++k) {
-                vec3 L = t.x * tangent_x[k] + t.y * tangent_y[k] + t.z * N[k];
-                sum[k] += textureLod(residual, L, t.w).rgb * t.z;
+        for (uint base = 0u; base < params.sample_count; base += LIST_STEP) {
+            vec4 lane_sample = samples[list_index(base, params.sample_count)];
+            for (uint j = 0u; j < list_chunk(base, params.sample_count); ++j) {
+                vec4 t = list_entry(lane_sample, j);
+                for (uint k = 0u; k < TEXELS; ++k) {
+                    vec3 L = t.x * tangent_x[k] + t.y * tangent_y[k] + t.z * N[k];
+                    sum[k] += textureLod(residual, L, t.w).rgb * t.z;
+                }
             }
         }
         for (uint k = 0u; k < TEXELS; ++k) sum[k] *= params.inverse_sample_weight;
     }
     if (params.part == 1u) {
         for (uint k = 0u; k < TEXELS; ++k)
-            if (x0 + k < n) imageStore(level, ivec3(x0 + k, id.y, id.z), vec4(sum[k], 1.0));
+            if (inside && x0 + k < n) imageStore(level, ivec3(x0 + k, id.y, id.z), vec4(sum[k], 1.0));
         return;
     }
     // D(h) (n.l) with (n.h)^2 = (1 + n.l) / 2 for h = normalize(n + l): no normalisation
@@ -86,25 +90,36 @@ void main() {
     float alpha = max(params.roughness * params.roughness, MIN_ALPHA);
     float a2_minus_1 = alpha * alpha - 1.0;
     if (list.count <= params.most_entries) {
-        for (uint j = 0u; j < list.count; ++j) {
-            vec3 l = list.entries[2u * j].xyz, e = list.entries[2u * j + 1u].rgb;
-            for (uint k = 0u; k < TEXELS; ++k) {
-                float NdotL = max(dot(N[k], l), 0.0);
-                float d = (0.5 + 0.5 * NdotL) * a2_minus_1 + 1.0;
-                excess[k] += e * (NdotL / (d * d));
+        uint count = list.count;
+        for (uint base = 0u; base < count; base += LIST_STEP) {
+            uint lane = list_index(base, count);
+            vec4 lane_direction = list.entries[2u * lane], lane_excess = list.entries[2u * lane + 1u];
+            for (uint j = 0u; j < list_chunk(base, count); ++j) {
+                vec3 l = list_entry(lane_direction, j).xyz, e = list_entry(lane_excess, j).rgb;
+                for (uint k = 0u; k < TEXELS; ++k) {
+                    float NdotL = max(dot(N[k], l), 0.0);
+                    float d = (0.5 + 0.5 * NdotL) * a2_minus_1 + 1.0;
+                    excess[k] += e * (NdotL / (d * d));
+                }
             }
         }
     } else {
-        for (uint j = 0u; j < coarse.count; ++j) {
-            vec3 l = coarse.entries[2u * j].xyz, e = coarse.entries[2u * j + 1u].rgb;
-            for (uint k = 0u; k < TEXELS; ++k) {
-                float NdotL = max(dot(N[k], l), 0.0);
-                float d = (0.5 + 0.5 * NdotL) * a2_minus_1 + 1.0;
-                excess[k] += e * (NdotL / (d * d));
+        uint count = coarse.count;
+        for (uint base = 0u; base < count; base += LIST_STEP) {
+            uint lane = list_index(base, count);
+            vec4 lane_direction = coarse.entries[2u * lane], lane_excess = coarse.entries[2u * lane + 1u];
+            for (uint j = 0u; j < list_chunk(base, count); ++j) {
+                vec3 l = list_entry(lane_direction, j).xyz, e = list_entry(lane_excess, j).rgb;
+                for (uint k = 0u; k < TEXELS; ++k) {
+                    float NdotL = max(dot(N[k], l), 0.0);
+                    float d = (0.5 + 0.5 * NdotL) * a2_minus_1 + 1.0;
+                    excess[k] += e * (NdotL / (d * d));
+                }
             }
         }
     }
     float excess_scale = alpha * alpha / PI * params.inverse_weight;
+    if (!inside) return;
     for (uint k = 0u; k < TEXELS; ++k)
         if (x0 + k < n)
             imageStore(level, ivec3(x0 + k, id.y, id.z), vec4(sum[k] + excess[k] * excess_scale, 1.0));

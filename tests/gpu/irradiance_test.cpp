@@ -8,6 +8,9 @@
 #include <vector>
 
 #include <facet/gpu/resources.h>
+#include <facet/graph/graph_run.h>
+#include <facet/shader/program_cache.h>
+#include "ibl/cube_texel_list.h"
 #include "ibl/environment_cube.h"
 #include <facet/ibl/irradiance.h>
 #include <facet/io/environment_image.h>
@@ -97,6 +100,66 @@ TEST(IrradianceReference, CubeTexelDirectionsFollowTheSpecTable) {
                 EXPECT_NEAR(s, (x + 0.5) / 4, 1e-12);
                 EXPECT_NEAR(t, (y + 0.5) / 4, 1e-12);
             }
+}
+
+// The convolutions read their list with the subgroup's lanes together on a CPU device
+// (shaders/ibl/list_lanes.glsl: each lane one entry, each entry then broadcast) and lane by
+// lane elsewhere: the same sums in the same order, so the same texels bit for bit, here for
+// a list whose length is no multiple of the subgroup's (its last read partly past the end).
+TEST_F(IrradianceTest, ListsReadByTheSubgroupSumLikeListsReadByEachLane) {
+    const uint32_t lanes = list_lanes(ctx());
+    ASSERT_GT(lanes, 1u) << "lavapipe's subgroups read the lists together";
+    // Faces of 48 (run_ibl's cube: half the height), whose level 4 (3^2 faces) lists 54 texels.
+    const Equirect sky = sun_sky(192, 96, 5e4, 2.5, 30, 40);
+    for (const bool irradiance : {true, false}) {
+        const uint32_t size = irradiance ? 16 : 32;
+        uint32_t count = 0;
+        auto convolve = [&](uint32_t list_lanes_value) {
+            return run_ibl(ctx(), sky, [&](RenderGraph& g, ProgramCache& programs, const Sampler&, ImageHandle cube,
+                                           ImageHandle) {
+                auto list = add_cube_texel_list_pass(g, programs, cube, 4, "texel list");
+                EXPECT_TRUE(list) << (list ? "" : list.error().message);
+                count = list->count;
+                std::vector<ShaderDefine> defines = list_shader_defines(
+                    ctx(), irradiance ? "FACET_IRRADIANCE_TEXELS" : "FACET_CONVOLVE_TEXELS");
+                EXPECT_EQ(defines.back().name, "FACET_LIST_LANES");
+                defines.back().value = std::to_string(list_lanes_value);
+                auto program = programs.compute(irradiance ? "ibl/irradiance_convolve.comp" : "ibl/specular_convolve.comp",
+                                                defines);
+                EXPECT_TRUE(program) << (program ? "" : program.error().message);
+                const ImageHandle out = g.create_image("out", environment_cube_desc(size, 1));
+                ImageHandle written;
+                g.add_compute_pass("convolve", [&](PassBuilder& b) {
+                    b.read(list->buffer);
+                    written = b.write_storage(out);
+                }, [p = *program, buffer = list->buffer, out, size, count, irradiance](PassContext& pc) {
+                    p->bind(pc.cmd());
+                    const DescriptorWrite writes[] = {DescriptorWrite::storage_buffer(pc.buffer(buffer)),
+                                                      DescriptorWrite::storage_image(pc.view(out, {}, cube_array_view))};
+                    p->push_descriptors(pc.cmd(), writes);
+                    struct IrradianceParams {
+                        uint32_t texel_count, gaussian;
+                        float sigma;
+                    };
+                    struct SpecularParams {
+                        uint32_t texel_count;
+                        float roughness;
+                    };
+                    if (irradiance) p->push_constants(pc.cmd(), IrradianceParams{count, 0, 0.0f});
+                    else p->push_constants(pc.cmd(), SpecularParams{count, 0.3f});
+                    dispatch_cube_faces(pc, *p, size, 0, 6, texels_per_invocation(pc.context()));
+                });
+                return written;
+            });
+        };
+        const CubeLevels together = convolve(lanes), each = convolve(1);
+        EXPECT_NE(count % lanes, 0u) << count << " entries: a multiple of the subgroup's " << lanes;
+        ASSERT_EQ(together.levels.at(0).size(), size_t(6) * size * size * 4);
+        ASSERT_EQ(together.levels.at(0), each.levels.at(0)) << (irradiance ? "irradiance" : "specular convolve");
+        double total = 0;
+        for (float v : together.levels[0]) total += v;
+        EXPECT_GT(total, 0.0);
+    }
 }
 
 TEST_F(IrradianceTest, WhiteFurnaceIsOneForEveryMethod) {
