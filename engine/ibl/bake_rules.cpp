@@ -38,7 +38,7 @@ std::vector<std::string> bake_warnings(const EnvironmentSource& analysed, const 
 // What a bake makes of the same input and settings: bumped with every change to the
 // passes or their rules (the LUT's channels, light extraction, the split level), so that
 // a bake cache never hands out an entry made by older code of the same version number.
-constexpr const char* kBakeRevision = "bake revision 8: hybrid levels' residual part at half size";
+constexpr const char* kBakeRevision = "bake revision 9: a procedural sky's cube made from the sky itself";
 
 std::string bake_key(const EnvironmentSource& s, const BakeSettings& b) {
     const IblSettings& o = b.ibl;

@@ -227,6 +227,7 @@ Result<BakedEnvironment> bake(Context& context, ProgramCache& programs, const En
         if (!extraction.lights.empty()) {
             residual = analysed;
             residual->image.rgba = std::move(extraction.residual);
+            residual->sky_model.reset();  // the sky without its sun: its own texels
             meta.light_split_level = light_split_level(A::lights(out), settings.ibl.specular.levels);
             split = {&analysed, meta.light_split_level};
         }

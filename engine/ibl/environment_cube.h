@@ -11,6 +11,7 @@ namespace facet {
 
 class ProgramCache;
 class Sampler;
+struct ProceduralSky;
 
 // Face size for an equirect of the given height: about height / 2 (design choice: a cube
 // face texel then spans about the angle of an equirect texel), at least 1.
@@ -29,6 +30,12 @@ Result<ImageHandle> add_environment_cube_passes(RenderGraph& graph, ProgramCache
                                                 const Sampler& equirect_sampler, ImageHandle equirect,
                                                 ImageHandle cube, uint32_t taps = 4, const std::string& name = "",
                                                 ImageHandle* mirror = nullptr);
+
+// Level 0 of `cube` straight from builtin:sky's model, taps 4 x 4 a texel as above
+// (shaders/ibl/procedural_sky_cube.comp; pass "procedural sky to cube"), `mirror` as above;
+// returns the version with level 0 written (add_cube_mip_passes makes the rest).
+Result<ImageHandle> add_procedural_sky_cube_pass(RenderGraph& graph, ProgramCache& programs, const ProceduralSky& sky,
+                                                 ImageHandle cube, ImageHandle* mirror = nullptr);
 
 // Levels 1 .. of `cube` (a version whose level 0 is written), each from the one above
 // (shaders/ibl/cube_downsample.comp); passes named `name` + level. Returns the final version.

@@ -70,6 +70,7 @@ Status materialize_environment(Context& context, ProgramCache& programs, Environ
     source.image.rgba.resize(bytes->size() / sizeof(float));
     std::memcpy(source.image.rgba.data(), bytes->data(), source.image.rgba.size() * sizeof(float));
     source.image.content_hash = source.content_hash;
+    source.sky_model = source.sky;
     source.sky.reset();
     return Ok{};
 }
@@ -152,12 +153,19 @@ Result<Uploaded> add_environment(RenderGraph& graph, Context& context, ProgramCa
         if (!uploaded) return uploaded.error();
         out.equirect = *uploaded;
     }
-    auto cube = add_environment_cube_passes(
-        graph, programs, equirect_sampler, out.equirect,
+    const ImageHandle cube_image =
         cube_target.valid() ? cube_target
                             : graph.create_image(prefix + "environment cube",
-                                                 environment_cube_desc(cube_size, full_mip_count(cube_size))),
-        4, "", mirror);
+                                                 environment_cube_desc(cube_size, full_mip_count(cube_size)));
+    // The sky's cube from the sky itself (16 evaluations a texel, not 16 lookups of its
+    // equirect, which the lists and the files still use); a file's from its equirect.
+    const std::optional<ProceduralSky>& sky = source.sky ? source.sky : source.sky_model;
+    auto cube = [&]() -> Result<ImageHandle> {
+        if (!sky) return add_environment_cube_passes(graph, programs, equirect_sampler, out.equirect, cube_image, 4, "", mirror);
+        auto level0 = add_procedural_sky_cube_pass(graph, programs, *sky, cube_image, mirror);
+        if (!level0) return level0.error();
+        return add_cube_mip_passes(graph, programs, *level0, "cube mip ");
+    }();
     if (!cube) return cube.error();
     out.cube = *cube;
     return out;

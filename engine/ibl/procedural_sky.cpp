@@ -1,18 +1,22 @@
 #include <facet/ibl/procedural_sky.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <facet/core/hash.h>
 #include <facet/core/shared_constants.h>
 #include <facet/graph/graph_run.h>
 #include <facet/shader/program_cache.h>
 #include "io/equirect.h"
+#include "ibl/cube_texel_list.h"
+#include "ibl/environment_cube.h"
 
 namespace facet {
 
 namespace {
 
-// Mirrors the push-constant block of shaders/ibl/procedural_sky.comp.
+// Mirrors the push-constant block of shaders/ibl/procedural_sky.glsl.
 struct SkyParams {
     float sun_direction_cos_radius[4];
     float sun_radiance_glow[4];
@@ -20,6 +24,16 @@ struct SkyParams {
     float horizon[4];
     float ground[4];
 };
+
+SkyParams sky_params(const ProceduralSky& sky) {
+    const auto dir = sky.sun_direction();
+    const double to_rad = pi / 180.0;
+    return {{dir[0], dir[1], dir[2], float(std::cos(sky.sun_angular_radius_deg * to_rad))},
+            {sky.sun_radiance[0], sky.sun_radiance[1], sky.sun_radiance[2], sky.sun_glow},
+            {sky.zenith_radiance[0], sky.zenith_radiance[1], sky.zenith_radiance[2], 0},
+            {sky.horizon_radiance[0], sky.horizon_radiance[1], sky.horizon_radiance[2], 0},
+            {sky.ground_radiance[0], sky.ground_radiance[1], sky.ground_radiance[2], 0}};
+}
 
 }  // namespace
 
@@ -58,13 +72,7 @@ Result<ImageHandle> add_procedural_sky_pass(RenderGraph& graph, ProgramCache& pr
                                             ImageHandle target) {
     auto pipeline = programs.compute("ibl/procedural_sky.comp");
     if (!pipeline) return pipeline.error();
-    const auto dir = sky.sun_direction();
-    const double to_rad = pi / 180.0;
-    SkyParams params{{dir[0], dir[1], dir[2], float(std::cos(sky.sun_angular_radius_deg * to_rad))},
-                     {sky.sun_radiance[0], sky.sun_radiance[1], sky.sun_radiance[2], sky.sun_glow},
-                     {sky.zenith_radiance[0], sky.zenith_radiance[1], sky.zenith_radiance[2], 0},
-                     {sky.horizon_radiance[0], sky.horizon_radiance[1], sky.horizon_radiance[2], 0},
-                     {sky.ground_radiance[0], sky.ground_radiance[1], sky.ground_radiance[2], 0}};
+    const SkyParams params = sky_params(sky);
     ImageHandle written;
     graph.add_compute_pass("procedural sky", [&](PassBuilder& b) { written = b.write_storage(target, ImageRange::mip(0)); },
                            [p = pipeline.value(), params, target](PassContext& pc) {
@@ -79,6 +87,49 @@ Result<ImageHandle> add_procedural_sky_pass(RenderGraph& graph, ProgramCache& pr
                                vkCmdDispatch(pc.cmd(), group_count(d.width, local[0]), group_count(d.height, local[1]), 1);
                            });
     return written;
+}
+
+Result<ImageHandle> add_procedural_sky_cube_pass(RenderGraph& graph, ProgramCache& programs, const ProceduralSky& sky,
+                                                 ImageHandle cube, ImageHandle* mirror) {
+    const bool with_mirror = mirror && mirror->valid();
+    const ImageDesc desc = graph.resource(cube).image_desc;
+    if (with_mirror) {
+        const ImageDesc& m = graph.resource(*mirror).image_desc;
+        if (!m.cube || m.width != desc.width || m.format != desc.format)
+            return Error{"procedural sky to cube: the mirror image must be a cube of the same face size and format"};
+    }
+    // Every texel with 4 x 4 taps, then those near the sun again with 16 x 16.
+    ImageHandle current = cube, mirror_current = with_mirror ? *mirror : ImageHandle{};
+    for (const bool sun_texels : {false, true}) {
+        const ShaderDefine mirror_define{"FACET_MIRROR", "1"}, sun_define{"FACET_SUN_TEXELS", "1"};
+        const std::vector<ShaderDefine> defines =
+            with_mirror ? (sun_texels ? std::vector{mirror_define, sun_define} : std::vector{mirror_define})
+                        : (sun_texels ? std::vector{sun_define} : std::vector<ShaderDefine>{});
+        auto pipeline = programs.compute("ibl/procedural_sky_cube.comp", defines);
+        if (!pipeline) return pipeline.error();
+        const ImageHandle cube_in = current, mirror_in = mirror_current;
+        SkyParams params = sky_params(sky);
+        // The sun pass's reach: the disk's radius plus two texels (at most 2 / n radians
+        // across), as the cosine the texels' centres are compared with (the zenith's w).
+        const double reach = sky.sun_angular_radius_deg * pi / 180.0 + 4.0 / desc.width;
+        params.zenith[3] = float(std::cos(std::min(reach, pi)));
+        graph.add_compute_pass(sun_texels ? "procedural sky to cube (sun)" : "procedural sky to cube", [&](PassBuilder& b) {
+            current = b.write_storage(cube_in, ImageRange::mip(0));
+            if (with_mirror) mirror_current = b.write_storage(mirror_in, ImageRange::mip(0));
+        }, [p = pipeline.value(), params, cube, mirror_in, with_mirror, n = desc.width](PassContext& pc) {
+            p->bind(pc.cmd());
+            std::vector<DescriptorWrite> writes = {
+                DescriptorWrite::storage_image(pc.view(cube, ImageRange::mip(0), VK_IMAGE_VIEW_TYPE_2D_ARRAY))};
+            if (with_mirror)
+                writes.push_back(
+                    DescriptorWrite::storage_image(pc.view(mirror_in, ImageRange::mip(0), VK_IMAGE_VIEW_TYPE_2D_ARRAY)));
+            p->push_descriptors(pc.cmd(), writes);
+            p->push_constants(pc.cmd(), params);
+            dispatch_cube(pc, *p, n);
+        });
+    }
+    if (with_mirror) *mirror = mirror_current;
+    return current;
 }
 
 }  // namespace facet

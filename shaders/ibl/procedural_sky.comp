@@ -8,31 +8,7 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0, rgba32f) uniform writeonly image2D out_sky;
 
-layout(push_constant) uniform Params {
-    vec4 sun_direction_cos_radius;  // xyz: unit direction to the sun; w: cos(angular radius)
-    vec4 sun_radiance_glow;         // rgb: radiance inside the disk; a: halo strength
-    vec4 zenith_radiance;           // rgb
-    vec4 horizon_radiance;          // rgb
-    vec4 ground_radiance;           // rgb
-} params;
-
-// Radiance in direction d; `below` and `above` are its row's ground and sky (they depend on
-// d.y alone, so main() makes them once per row of taps). Branch-free: lavapipe runs both
-// sides of a branch for a mixed SIMD row, so every lane computes each case and selects.
-vec3 sky_radiance(vec3 d, vec3 below, vec3 above) {
-    vec3 sun = params.sun_direction_cos_radius.xyz;
-    float cos_sun = dot(d, sun);
-    // Forward-scattering glow around the sun (a smooth lobe, not a second light).
-    float glow = max(cos_sun, 0.0);  // its 64th power, by six squarings
-    glow *= glow;
-    glow *= glow;
-    glow *= glow;
-    glow *= glow;
-    glow *= glow;
-    glow *= glow;
-    vec3 open_sky = d.y < 0.0 ? below : above + glow * params.sun_radiance_glow.a * params.horizon_radiance.rgb;
-    return cos_sun >= params.sun_direction_cos_radius.w ? params.sun_radiance_glow.rgb : open_sky;
-}
+#include "ibl/procedural_sky.glsl"
 
 void main() {
     ivec2 size = imageSize(out_sky);
@@ -52,8 +28,7 @@ void main() {
         float theta = (0.5 - v) * facet_pi;
         float c = cos(theta), s = sin(theta);
         // Ground, fading into the horizon over a few degrees; the sky from horizon to zenith.
-        vec3 below = mix(params.horizon_radiance.rgb, params.ground_radiance.rgb, clamp(-s / 0.05, 0.0, 1.0));
-        vec3 above = mix(params.horizon_radiance.rgb, params.zenith_radiance.rgb, sqrt(max(s, 0.0)));
+        vec3 below = sky_ground(s), above = sky_open(s);
         for (int i = 0; i < 4; ++i)
             sum += sky_radiance(vec3(c * longitude_sin_cos[i].y, s, c * longitude_sin_cos[i].x), below, above);
     }

@@ -27,6 +27,10 @@ struct EnvironmentSource {
     std::string name;
     std::optional<ProceduralSky> sky;
     EnvironmentImage image;  // file texels (empty for a procedural sky)
+    // The procedural sky `image` was rendered from (materialize_environment), so that a bake
+    // of those texels makes the cube from the sky itself, as a bake of `sky` does; reset
+    // where the texels change (lights taken out, downsampled).
+    std::optional<ProceduralSky> sky_model;
     std::string content_hash;
     uint32_t width = 0, height = 0;                // what the bake uses
     uint32_t source_width = 0, source_height = 0;  // the file's (larger when downsampled on load)
