@@ -27,6 +27,15 @@ ImageDesc environment_cube_desc(uint32_t size, uint32_t mips) {
     return d;
 }
 
+Status check_cube_mirror(const RenderGraph& graph, ImageHandle cube, const ImageHandle* mirror, const std::string& pass) {
+    if (!mirror || !mirror->valid()) return Ok{};
+    const ImageDesc& c = graph.resource(cube).image_desc;
+    const ImageDesc& m = graph.resource(*mirror).image_desc;
+    if (!m.cube || m.width != c.width || m.format != c.format)
+        return Error{pass + ": the mirror image must be a cube of the same face size and format"};
+    return Ok{};
+}
+
 Result<ImageHandle> add_environment_cube_passes(RenderGraph& graph, ProgramCache& programs,
                                                 const Sampler& equirect_sampler, ImageHandle equirect,
                                                 ImageHandle cube, uint32_t taps, const std::string& name,
@@ -37,11 +46,7 @@ Result<ImageHandle> add_environment_cube_passes(RenderGraph& graph, ProgramCache
     auto to_cube = programs.compute("ibl/equirect_to_cube.comp", defines);
     if (!to_cube) return to_cube.error();
     const ImageDesc desc = graph.resource(cube).image_desc;
-    if (with_mirror) {
-        const ImageDesc& m = graph.resource(*mirror).image_desc;
-        if (!m.cube || m.width != desc.width || m.format != desc.format)
-            return Error{"equirect to cube: the mirror image must be a cube of the same face size and format"};
-    }
+    if (Status fits = check_cube_mirror(graph, cube, mirror, "equirect to cube"); !fits) return fits.error();
     const VkSampler sampler = equirect_sampler.handle();
     const VkImageViewType array = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
     ImageHandle current, mirror_in = with_mirror ? *mirror : ImageHandle{}, mirror_out;

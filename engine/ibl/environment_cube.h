@@ -31,6 +31,10 @@ Result<ImageHandle> add_environment_cube_passes(RenderGraph& graph, ProgramCache
                                                 ImageHandle cube, uint32_t taps = 4, const std::string& name = "",
                                                 ImageHandle* mirror = nullptr);
 
+// Whether `mirror` (if given and valid) can take `cube`'s level 0: a cube of the same face
+// size and format. The error names `pass`.
+Status check_cube_mirror(const RenderGraph& graph, ImageHandle cube, const ImageHandle* mirror, const std::string& pass);
+
 // Level 0 of `cube` straight from builtin:sky's model, taps 4 x 4 a texel as above
 // (shaders/ibl/procedural_sky_cube.comp; pass "procedural sky to cube"), `mirror` as above;
 // returns the version with level 0 written (add_cube_mip_passes makes the rest).

@@ -93,11 +93,7 @@ Result<ImageHandle> add_procedural_sky_cube_pass(RenderGraph& graph, ProgramCach
                                                  ImageHandle cube, ImageHandle* mirror) {
     const bool with_mirror = mirror && mirror->valid();
     const ImageDesc desc = graph.resource(cube).image_desc;
-    if (with_mirror) {
-        const ImageDesc& m = graph.resource(*mirror).image_desc;
-        if (!m.cube || m.width != desc.width || m.format != desc.format)
-            return Error{"procedural sky to cube: the mirror image must be a cube of the same face size and format"};
-    }
+    if (Status fits = check_cube_mirror(graph, cube, mirror, "procedural sky to cube"); !fits) return fits.error();
     // Every texel with 4 x 4 taps, then those near the sun again with 16 x 16.
     ImageHandle current = cube, mirror_current = with_mirror ? *mirror : ImageHandle{};
     for (const bool sun_texels : {false, true}) {

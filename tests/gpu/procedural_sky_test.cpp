@@ -13,6 +13,7 @@
 #include <facet/shader/program_cache.h>
 #include "ibl/environment_cube.h"
 #include "support/gpu_test.h"
+#include <facet/reference/ibl_reference.h>
 
 namespace facet {
 namespace {
@@ -91,16 +92,6 @@ TEST_F(ProceduralSkyTest, CubeFromTheSkyMatchesTheModel) {
     };
     const std::vector<float> direct = level0(false), via_equirect = level0(true);
     const auto sun = sky.sun_direction();
-    auto direction = [&](uint32_t f, double sc, double tc) {
-        switch (f) {
-            case 0: return std::array<double, 3>{1, -tc, -sc};
-            case 1: return std::array<double, 3>{-1, -tc, sc};
-            case 2: return std::array<double, 3>{sc, 1, tc};
-            case 3: return std::array<double, 3>{sc, -1, -tc};
-            case 4: return std::array<double, 3>{sc, -tc, 1};
-            default: return std::array<double, 3>{-sc, -tc, -1};
-        }
-    };
     auto area = [](double x, double y) { return std::atan2(x * y, std::sqrt(x * x + y * y + 1)); };
     double sun_truth = 0, sun_direct = 0, sun_equirect = 0, err_direct = 0, err_equirect = 0, sum = 0;
     size_t count = 0;
@@ -108,16 +99,16 @@ TEST_F(ProceduralSkyTest, CubeFromTheSkyMatchesTheModel) {
         for (uint32_t y = 0; y < n; ++y)
             for (uint32_t x = 0; x < n; ++x) {
                 const double x0 = 2.0 * x / n - 1, x1 = 2.0 * (x + 1) / n - 1, y0 = 2.0 * y / n - 1, y1 = 2.0 * (y + 1) / n - 1;
-                const auto c = direction(f, (x0 + x1) / 2, (y0 + y1) / 2);
-                const double cos_sun = (c[0] * sun[0] + c[1] * sun[1] + c[2] * sun[2]) /
-                                       std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+                const test::Vec3 c = test::cube_texel_direction(f, x, y, n);
+                const double cos_sun = c[0] * sun[0] + c[1] * sun[1] + c[2] * sun[2];
                 const bool near_sun = cos_sun > std::cos(6.0 * pi / 180);
                 // Finer near the sun than the shader's 16 x 16 there, and on another grid.
                 const uint32_t t = near_sun ? 3 * taps : taps;
                 double truth = 0;
                 for (uint32_t j = 0; j < t; ++j)
                     for (uint32_t i = 0; i < t; ++i) {
-                        const auto d = direction(f, 2 * (x + (i + 0.5) / t) / n - 1, 2 * (y + (j + 0.5) / t) / n - 1);
+                        // Tap (i, j) of the texel: the centre of texel (x t + i, y t + j) of a t-times finer face.
+                        const test::Vec3 d = test::cube_texel_direction(f, x * t + i, y * t + j, n * t);
                         truth += sky_green(sky, d[0], d[1], d[2]);
                     }
                 truth /= double(t) * t;
