@@ -1,11 +1,11 @@
 #include "facet_bake_options.h"
 
-#include <cfloat>
 #include <algorithm>
 #include <cstdio>
 #include <stdexcept>
 
 #include "cli.h"
+#include "render_options.h"
 #include "shader_cache.h"
 
 namespace facet {
@@ -43,7 +43,7 @@ cli::Parser make_parser() {
         .option("--max-env-width", "N", "downsample wider environment files to N x N/2 while reading them\n"
                                          "                          (default " + std::to_string(kDefaultMaxEnvironmentWidth) +
                                              "; a built-in's --width may not exceed it)")
-        .option("--exposure", "E", "exposure of environment.png (default 1)")
+        .option("--exposure", "E", "exposure of environment.png, 1e-6..1e6 (default 1)")
         .flag("--sanitize", "replace NaN, Inf and negative texels of ENV with 0 instead of failing")
         .option("--target-error", "E", "accuracy budget: the cheapest methods whose measured relative RMS error\n"
                                         "                          against the brute-force truth is at most E (e.g. 0.02)")
@@ -104,13 +104,9 @@ std::optional<BakeOptions> parse_bake_options(int argc, char** argv) {
     if (o.sky_width > o.max_env_width)
         throw std::invalid_argument("--width " + std::to_string(o.sky_width) + " is above --max-env-width " +
                                     std::to_string(o.max_env_width) + " (raise both for a wider built-in environment)");
-    if (a.has("--exposure")) {
-        const double exposure = cli::parse_double(a.get("--exposure"), "--exposure");
-        // A finite double can still overflow the float (1e300).
-        if (!(exposure > 0) || exposure > FLT_MAX)
-            throw std::invalid_argument("--exposure must be positive and finite as a float");
-        o.exposure = static_cast<float>(exposure);
-    }
+    // The range facet-render's --exposure and the viewer's take (1e300 overflowed the float
+    // here once, 1e-300 rounded to 0 in it).
+    if (a.has("--exposure")) o.exposure = number_option(a, "--exposure", 1e-6f, 1e6f);
     if (a.has("--sh9-no-window")) o.irradiance.sh9_windowing = false;
     o.sanitize = a.has("--sanitize");
     if (a.has("--target-error")) {
