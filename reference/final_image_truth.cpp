@@ -426,7 +426,70 @@ TexelLights texel_lights(const Equirect& env) {
     return t;
 }
 
+namespace {
+
+// environment_truth for a material with no layer and no extension (every pixel of
+// builtin:spheres, the accuracy benchmark's scene): layer_brdf_cos's reflection, term by term
+// the same expressions, with what depends only on the material, n and v worked out once
+// instead of at every texel (the truths of the test suite spent most of their time there).
+// final_image_truth_test holds it to brdf_cos.
+Vec3 plain_environment_truth(const TexelLights& t, BrdfModel model, const TruthMaterial& m, const Vec3& n,
+                             const Vec3& v) {
+    const double n_v = std::max(dot(n, v), 1e-9);
+    const double alpha = std::max(m.roughness * m.roughness, 1e-4), a2 = alpha * alpha;
+    const bool gltf = model == BrdfModel::gltf;
+    // glTF: f = A kd + (w Fd (1 - metallic) + Fm metallic) D V per channel, Fd and Fm Schlick's
+    // of f0s and albedo, kd = 1 - w max(Fd) (Fd's largest channel is its largest F0's).
+    // Thesis: f = kd albedo / pi + F spec, F = w' Schlick(F0), kd = (1 - F)(1 - metallic).
+    Vec3 f0s, diffuse;
+    double f0_max = 0;
+    const double w = gltf ? m.specular_weight : m.specular_weight * (1 - m.metallic) + m.metallic;
+    for (size_t c = 0; c < 3; ++c) {
+        f0s[c] = std::min(m.dielectric_f0 * m.specular_color[c], 1.0);
+        if (!gltf) f0s[c] = f0s[c] * (1 - m.metallic) + m.albedo[c] * m.metallic;
+        f0_max = std::max(f0_max, f0s[c]);
+        diffuse[c] = m.albedo[c] / pi;
+    }
+    const double k = m.roughness * m.roughness / 2;  // the thesis' environment k
+    const double g1_v = schlick_g1(n_v, k);
+    Vec3 sum{0, 0, 0};
+    for (size_t i = 0; i < t.dir.size(); ++i) {
+        const Vec3& l = t.dir[i];
+        const double n_l = dot(n, l);
+        if (n_l <= 0) continue;
+        const Vec3 h{v[0] + l[0], v[1] + l[1], v[2] + l[2]};  // not normalised: the cosines divide by its length
+        const double h_len = std::sqrt(dot(h, h));
+        if (h_len < 1e-12) continue;
+        const double n_h = std::clamp(dot(n, h) / h_len, 0.0, 1.0), v_h = std::clamp(dot(v, h) / h_len, 0.0, 1.0);
+        const double D = ggx_d(n_h, a2);
+        const double s1 = 1 - v_h, schlick = s1 * s1 * s1 * s1 * s1;
+        Vec3 f;
+        if (gltf) {
+            const double DV = D * visibility_height_correlated(n_l, n_v, a2);
+            const double kd = 1 - w * (f0_max + (1 - f0_max) * schlick);
+            for (size_t c = 0; c < 3; ++c) {
+                const double Fd = f0s[c] + (1 - f0s[c]) * schlick;
+                const double Fm = m.albedo[c] + (1 - m.albedo[c]) * schlick;
+                f[c] = (1 - m.metallic) * (kd * diffuse[c] + w * Fd * DV) + m.metallic * (Fm * DV);
+            }
+        } else {
+            const double spec = D * (g1_v * schlick_g1(n_l, k)) / (4 * n_l * n_v);
+            for (size_t c = 0; c < 3; ++c) {
+                const double F = w * (f0s[c] + (1 - f0s[c]) * schlick);
+                f[c] = (1 - F) * (1 - m.metallic) * diffuse[c] + F * spec;
+            }
+        }
+        for (size_t c = 0; c < 3; ++c) sum[c] += f[c] * n_l * t.power[i][c];
+    }
+    return sum;
+}
+
+}  // namespace
+
 Vec3 environment_truth(const TexelLights& t, BrdfModel model, const TruthMaterial& m, const Vec3& n, const Vec3& v) {
+    const bool plain = m.clearcoat <= 0 && m.iridescence <= 0 && m.anisotropy <= 0 && m.transmission <= 0 &&
+                       std::max({m.sheen_color[0], m.sheen_color[1], m.sheen_color[2]}) <= 0;
+    if (plain) return plain_environment_truth(t, model, m, n, v);
     Vec3 sum{0, 0, 0};
     for (size_t i = 0; i < t.dir.size(); ++i) {
         // Below the horizon (of the surface and of its clear coat) of a material that
