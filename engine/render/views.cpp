@@ -23,6 +23,34 @@ std::optional<View> parse_view(const std::string& name) {
     return std::nullopt;
 }
 
+bool view_of_surface(View view) {
+    switch (view) {
+        case View::normal:
+        case View::position:
+        case View::basecolor:
+        case View::metallic:
+        case View::roughness:
+        case View::occlusion:
+        case View::emissive:
+        case View::specular_f0:
+        case View::clearcoat:
+        case View::clearcoat_normal:
+        case View::iridescence:
+        case View::anisotropy:
+        case View::sheen:
+        case View::transmission: return true;
+        case View::final_color:
+        case View::D:
+        case View::F:
+        case View::G:
+        case View::diffuse:
+        case View::specular:
+        case View::irradiance:
+        case View::prefiltered: return false;
+    }
+    return false;
+}
+
 std::string view_names() {
     std::string list;
     for (int i = 1; i < kViewCount; ++i) list += std::string(i > 1 ? "," : "") + kViewNames[i];

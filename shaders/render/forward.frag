@@ -251,6 +251,46 @@ Surface surface_at(MaterialData m) {
     return s;
 }
 
+#if VIEW_OF_SURFACE(VIEW)
+// A view of the surface itself (views.glsl): what the material gives, no light.
+vec4 surface_view(Surface surface) {
+    FacetSurface s = surface.shading;
+#if VIEW == VIEW_NORMAL
+    return vec4(s.n, 1.0);
+#elif VIEW == VIEW_POSITION
+    return vec4(in_world, 1.0);
+#elif VIEW == VIEW_BASECOLOR
+    return vec4(s.albedo, surface.alpha);
+#elif VIEW == VIEW_METALLIC
+#ifdef UNLIT
+    return vec4(vec3(s.metallic), 0.0);  // alpha 0 marks an unlit surface (the reference mode copies it)
+#else
+    return vec4(vec3(s.metallic), 1.0);
+#endif
+#elif VIEW == VIEW_ROUGHNESS
+    return vec4(vec3(s.roughness), 1.0);
+#elif VIEW == VIEW_OCCLUSION
+    return vec4(vec3(s.occlusion), 1.0);
+#elif VIEW == VIEW_EMISSIVE
+    return vec4(surface.emissive, 1.0);
+#elif VIEW == VIEW_SPECULAR_F0
+    return vec4(s.dielectric_f0, s.specular_factor);
+#elif VIEW == VIEW_CLEARCOAT
+    return vec4(s.clearcoat, s.clearcoat_roughness, 0.0, 1.0);
+#elif VIEW == VIEW_CLEARCOAT_NORMAL
+    return vec4(s.clearcoat_n, 1.0);
+#elif VIEW == VIEW_IRIDESCENCE
+    return vec4(s.iridescence, s.iridescence_ior, s.iridescence_thickness, 1.0);
+#elif VIEW == VIEW_ANISOTROPY
+    return vec4(s.anisotropy_t, s.anisotropy);
+#elif VIEW == VIEW_SHEEN
+    return vec4(s.sheen_color, s.sheen_roughness);
+#elif VIEW == VIEW_TRANSMISSION
+    return vec4(s.transmission, s.transmission_roughness, surface.thickness, 1.0);
+#endif
+}
+#endif
+
 void main() {
     MaterialData m = material;
 #ifdef FLAT_FLOOR
@@ -274,6 +314,11 @@ void main() {
     out_color = vec4(s.albedo + surface.emissive, surface.alpha);
     return;
 #endif
+#if VIEW_OF_SURFACE(VIEW)
+    // Written before any light is looked at: a pipeline of a few thousand words of SPIR-V
+    // instead of the lit one's 20000 (lavapipe builds it in ~7 ms instead of ~90).
+    out_color = surface_view(surface);
+#else
     vec3 v = normalize(frame.camera_position.xyz - in_world);
     vec3 n = s.n;
     float NdotV = clamp(dot(n, v), 0.0, 1.0);
@@ -486,24 +531,6 @@ void main() {
 #endif
 #if VIEW == VIEW_FINAL
     out_color = vec4(diffuse + specular + surface.emissive, surface.alpha);
-#elif VIEW == VIEW_NORMAL
-    out_color = vec4(n, 1.0);
-#elif VIEW == VIEW_POSITION
-    out_color = vec4(in_world, 1.0);
-#elif VIEW == VIEW_BASECOLOR
-    out_color = vec4(s.albedo, surface.alpha);
-#elif VIEW == VIEW_METALLIC
-#ifdef UNLIT
-    out_color = vec4(vec3(s.metallic), 0.0);  // alpha 0 marks an unlit surface (the reference mode copies it)
-#else
-    out_color = vec4(vec3(s.metallic), 1.0);
-#endif
-#elif VIEW == VIEW_ROUGHNESS
-    out_color = vec4(vec3(s.roughness), 1.0);
-#elif VIEW == VIEW_OCCLUSION
-    out_color = vec4(vec3(s.occlusion), 1.0);
-#elif VIEW == VIEW_EMISSIVE
-    out_color = vec4(surface.emissive, 1.0);
 #elif VIEW == VIEW_DIFFUSE
     out_color = vec4(diffuse, 1.0);
 #elif VIEW == VIEW_SPECULAR
@@ -512,20 +539,6 @@ void main() {
     out_color = vec4(irradiance, 1.0);
 #elif VIEW == VIEW_PREFILTERED
     out_color = vec4(prefiltered, 1.0);
-#elif VIEW == VIEW_SPECULAR_F0
-    out_color = vec4(s.dielectric_f0, s.specular_factor);
-#elif VIEW == VIEW_CLEARCOAT
-    out_color = vec4(s.clearcoat, s.clearcoat_roughness, 0.0, 1.0);
-#elif VIEW == VIEW_CLEARCOAT_NORMAL
-    out_color = vec4(s.clearcoat_n, 1.0);
-#elif VIEW == VIEW_IRIDESCENCE
-    out_color = vec4(s.iridescence, s.iridescence_ior, s.iridescence_thickness, 1.0);
-#elif VIEW == VIEW_ANISOTROPY
-    out_color = vec4(s.anisotropy_t, s.anisotropy);
-#elif VIEW == VIEW_SHEEN
-    out_color = vec4(s.sheen_color, s.sheen_roughness);
-#elif VIEW == VIEW_TRANSMISSION
-    out_color = vec4(s.transmission, s.transmission_roughness, surface.thickness, 1.0);
 #elif defined(UNLIT)
     out_color = vec4(0.0, 0.0, 0.0, 1.0);  // D, F, G: no BRDF
 #else
@@ -541,4 +554,5 @@ void main() {
     out_color = vec4(vec3(facet_geometry(s, NdotV, NdotL, view_punctual)), 1.0);
 #endif
 #endif
+#endif  // VIEW_OF_SURFACE
 }
