@@ -12,7 +12,7 @@ FACET_JOBS="${FACET_JOBS:-$(nproc)}"
 FACET_PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
-  glslang-dev glslang-tools libglfw3-dev libglm-dev libtinygltf-dev libopenimageio-dev libimgui-dev
+  glslang-dev glslang-tools spirv-tools libglfw3-dev libglm-dev libtinygltf-dev libopenimageio-dev libimgui-dev
   libmeshoptimizer-dev libdraco-dev zlib1g-dev
 )
 # python3-matplotlib: facet-bench sweep's charts (scripts/chart.py), drawn in a test.

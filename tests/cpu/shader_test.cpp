@@ -112,6 +112,56 @@ TEST(ShaderCompiler, DefinesChangeTheOutputAndTheKey) {
     EXPECT_NE(plain->words, scaled->words);
 }
 
+// The interface variables (Input and Output storage) an OpEntryPoint lists, and the module's
+// size: read from the words (opcode in the low half-word, word count in the high).
+struct SpirvShape {
+    size_t inputs = 0, outputs = 0;
+};
+SpirvShape shape_of(const std::vector<uint32_t>& words) {
+    SpirvShape s;
+    for (size_t i = 5; i < words.size();) {
+        const uint32_t count = words[i] >> 16, opcode = words[i] & 0xffff;
+        if (count == 0) break;
+        if (opcode == 59 /* OpVariable */ && count >= 4) {
+            if (words[i + 3] == 1 /* Input */) ++s.inputs;
+            if (words[i + 3] == 3 /* Output */) ++s.outputs;
+        }
+        i += count;
+    }
+    return s;
+}
+
+// What the defines leave unreachable goes (SPIRV-Tools' performance passes: the lit forward
+// shader is several times smaller), but every binding and every input and output stays, so
+// that a variant's interface is its source's: the forward pass pushes all 26 descriptors to
+// every material's pipeline, and the stages' locations must still meet (the validation
+// layer warns of any attribute or output left unconsumed). debug_info keeps glslang's code.
+TEST(ShaderCompiler, OptimisesWhatTheDefinesLeaveButKeepsTheInterface) {
+    ShaderCompiler optimised;
+    ShaderCompilerOptions debug_options;
+    debug_options.debug_info = true;
+    ShaderCompiler debug(debug_options);
+    const std::vector<ShaderDefine> lit = {{"USE_IBL", "1"}, {"ALPHA_OPAQUE", "1"}};
+    for (ShaderStage stage : {ShaderStage::vertex, ShaderStage::fragment}) {
+        const char* name = stage == ShaderStage::vertex ? "render/forward.vert" : "render/forward.frag";
+        auto small = optimised.compile(stage, name, lit);
+        auto full = debug.compile(stage, name, lit);
+        ASSERT_TRUE(small && full) << name;
+        if (stage == ShaderStage::fragment)
+            EXPECT_LT(small->words.size() * 4, full->words.size()) << name << ": the unreachable code is gone";
+        ASSERT_EQ(small->reflection.bindings.size(), full->reflection.bindings.size()) << name;
+        for (size_t b = 0; b < small->reflection.bindings.size(); ++b) {
+            EXPECT_EQ(small->reflection.bindings[b].binding, full->reflection.bindings[b].binding) << name;
+            EXPECT_EQ(small->reflection.bindings[b].type, full->reflection.bindings[b].type) << name;
+        }
+        EXPECT_EQ(small->reflection.push_constant_bytes, full->reflection.push_constant_bytes) << name;
+        const SpirvShape a = shape_of(small->words), b = shape_of(full->words);
+        EXPECT_EQ(a.inputs, b.inputs) << name;
+        EXPECT_EQ(a.outputs, b.outputs) << name;
+        EXPECT_GT(a.inputs, 0u) << name;
+    }
+}
+
 TEST(ShaderCompiler, ErrorInMainFileNamesFileLineAndSource) {
     ShaderCompiler compiler;
     const std::string source = "#version 460\nlayout(local_size_x = 1) in;\nvoid main() {\n    float x = ;\n}\n";

@@ -1,6 +1,8 @@
 #pragma once
 // GLSL -> SPIR-V at run time with the glslang library (Vulkan 1.3 client, SPIR-V 1.5 so
-// that host devices without maintenance4 accept it).
+// that host devices without maintenance4 accept it), then SPIRV-Tools' performance passes
+// (what the defines leave unreachable goes before a driver sees it; every binding,
+// specialization constant and interface variable stays) unless debug_info is set.
 // #include "x.glsl" resolves against the including file's folder, then shaders/;
 // errors read `file:line: error: message` followed by the offending source line.
 // Results are cached in memory (and optionally on disk) by a hash of the source, the
@@ -41,7 +43,7 @@ struct ShaderCompilerOptions {
     // it, and writers' leftovers older than an hour (a killed process's .partial files)
     // go too. An entry is about 10-20 KiB; 0: no bound.
     uint64_t disk_cache_max_bytes = 64ull << 20;
-    bool debug_info = false;     // keep debug information in the SPIR-V
+    bool debug_info = false;     // keep debug information in the SPIR-V, unoptimised
 };
 
 class ShaderCompiler {
