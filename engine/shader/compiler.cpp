@@ -8,6 +8,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <mutex>
+#include <optional>
 #include <set>
 
 #include <facet/core/hash.h>
@@ -182,6 +185,46 @@ void add_sources(const ShaderLibrary& library, std::string_view name, std::strin
 
 }  // namespace
 
+namespace {
+
+// What every sharing compiler of the process has compiled (ShaderCompilerOptions::
+// share_in_process). The keys hash the sources with their includes, the defines, the stage
+// and the toolchain, so any compiler's entry serves any other.
+struct ProcessCache {
+    std::mutex mutex;
+    std::map<uint64_t, std::vector<uint32_t>> entries;
+    size_t bytes = 0;
+};
+constexpr size_t kProcessCacheBytes = 32u << 20;
+
+ProcessCache& process_cache() {
+    static ProcessCache cache;
+    return cache;
+}
+
+std::optional<std::vector<uint32_t>> process_cache_find(uint64_t key) {
+    ProcessCache& cache = process_cache();
+    std::lock_guard lock(cache.mutex);
+    auto it = cache.entries.find(key);
+    if (it == cache.entries.end()) return std::nullopt;
+    return it->second;
+}
+
+void process_cache_add(uint64_t key, const std::vector<uint32_t>& words) {
+    ProcessCache& cache = process_cache();
+    std::lock_guard lock(cache.mutex);
+    const size_t bytes = words.size() * sizeof(uint32_t);
+    if (cache.entries.count(key)) return;
+    if (cache.bytes + bytes > kProcessCacheBytes) {  // far more variants than a scene needs: start again
+        cache.entries.clear();
+        cache.bytes = 0;
+    }
+    cache.entries.emplace(key, words);
+    cache.bytes += bytes;
+}
+
+}  // namespace
+
 const char* stage_name(ShaderStage stage) {
     switch (stage) {
         case ShaderStage::vertex: return "vertex";
@@ -240,6 +283,13 @@ Result<Spirv> ShaderCompiler::compile_source(ShaderStage stage, std::string_view
             return with_reflection(std::move(*words), key, name);
         }
     }
+    if (options_.share_in_process)
+        if (auto words = process_cache_find(key)) {
+            std::lock_guard lock(mutex_);
+            ++stats_.process_hits;
+            memory_cache_[key] = *words;
+            return with_reflection(std::move(*words), key, name);
+        }
     const auto start = std::chrono::steady_clock::now();
     auto words = glslang_frontend::compile(library_, input);
     if (!words) return words.error();
@@ -253,6 +303,7 @@ Result<Spirv> ShaderCompiler::compile_source(ShaderStage stage, std::string_view
         write_disk(options_.disk_cache_dir, key, *words);
         bound_disk_cache(options_.disk_cache_dir, options_.disk_cache_max_bytes);
     }
+    if (options_.share_in_process) process_cache_add(key, *words);
     std::lock_guard lock(mutex_);
     ++stats_.compiles;
     memory_cache_[key] = *words;

@@ -286,6 +286,7 @@ TEST(ShaderReflection, DiskCacheHitsCarryTheInterface) {
         std::filesystem::temp_directory_path() / ("facet_reflection_test_" + std::to_string(::getpid()));
     ShaderCompilerOptions options;
     options.disk_cache_dir = dir.string();
+    options.share_in_process = false;  // the second compiler must read the disk
     ShaderReflection fresh, cached;
     {
         ShaderCompiler compiler(options);

@@ -267,10 +267,42 @@ TEST(ShaderCompiler, KeyFollowsNestedIncludesAndDefines) {
     EXPECT_EQ(compiler.stats().memory_hits, 1u);
 }
 
+// A compiler that shares (the default) finds what another compiler of the process compiled,
+// after its own caches: a host's render sessions, each with its own compiler and no cache
+// directory, compile each shader once. One that does not share compiles it again.
+TEST(ShaderCompiler, CompilersOfAProcessShareTheirResults) {
+    const std::string source = std::string(fill_source) + "// " + std::to_string(::getpid()) + " shared\n";
+    ShaderCompiler first, second;
+    auto a = first.compile_source(ShaderStage::compute, "fill.comp", source);
+    auto b = second.compile_source(ShaderStage::compute, "fill.comp", source);
+    ASSERT_TRUE(a && b);
+    EXPECT_EQ(first.stats().compiles, 1u);
+    EXPECT_EQ(second.stats().compiles, 0u);
+    EXPECT_EQ(second.stats().process_hits, 1u);
+    EXPECT_EQ(a->words, b->words);
+    EXPECT_EQ(a->key, b->key);
+    EXPECT_EQ(b->reflection.bindings.size(), a->reflection.bindings.size());
+    ShaderCompilerOptions alone;
+    alone.share_in_process = false;
+    ShaderCompiler third(alone);
+    auto c = third.compile_source(ShaderStage::compute, "fill.comp", source);
+    ASSERT_TRUE(c);
+    EXPECT_EQ(third.stats().compiles, 1u);
+    EXPECT_EQ(third.stats().process_hits, 0u);
+    EXPECT_EQ(c->words, a->words);
+    // Another define is another entry.
+    const ShaderDefine scale{"SCALE", "3.0"};
+    auto d = second.compile_source(ShaderStage::compute, "fill.comp", source, std::span(&scale, 1));
+    ASSERT_TRUE(d);
+    EXPECT_EQ(second.stats().compiles, 1u);
+    EXPECT_NE(d->words, a->words);
+}
+
 TEST(ShaderCompiler, DiskCacheIsReusedAndDamagedEntriesRecompiled) {
     TempDir cache;
     ShaderCompilerOptions options;
     options.disk_cache_dir = cache.path.string();
+    options.share_in_process = false;  // each compiler's own compiles and disk reads are counted
     Spirv original;
     {
         ShaderCompiler compiler(options);
@@ -305,6 +337,7 @@ TEST(ShaderCompiler, DiskCacheKeepsItsBoundLeastRecentlyUsedFirst) {
     TempDir cache;
     ShaderCompilerOptions options;
     options.disk_cache_dir = cache.path.string();
+    options.share_in_process = false;  // each compiler's compiles and disk reads are counted
     auto entry = [&](const Spirv& spirv) {
         Hash64 h;
         h.state = spirv.key;
@@ -365,6 +398,7 @@ TEST(ShaderCompiler, UnwritableDiskCacheStillCompiles) {
     std::ofstream(dir.path / "file") << "not a directory";
     ShaderCompilerOptions options;
     options.disk_cache_dir = (dir.path / "file" / "cache").string();
+    options.share_in_process = false;  // each compiler's compiles are counted
     for (int run = 0; run < 2; ++run) {
         ShaderCompiler compiler(options);
         auto spirv = compiler.compile_source(ShaderStage::compute, "fill.comp", fill_source);
