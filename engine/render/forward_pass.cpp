@@ -197,13 +197,16 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     define_if(stretched, "FACET_ANISOTROPY");
     define_if(sheen, "FACET_SHEEN");
     define_if(through, "FACET_TRANSMISSION");
-    // A view of the surface itself is written before any light is looked at (views.glsl's
-    // VIEW_OF_SURFACE): none of the lighting's defines, so that one pipeline serves it under
-    // any lighting, a fraction of the lit one's to build (lavapipe: ~7 ms against ~90).
-    const bool lit = !view_of_surface(view);
-    define_if(lit && ibl, "USE_IBL");
+    // A view of the surface itself is written before any light is looked at
+    // (FACET_SURFACE_VIEW): none of the environment's defines (its lookups, the disks), so that
+    // one pipeline serves it under any lighting, a fraction of the lit one's to build (lavapipe:
+    // ~7 ms against ~90).
+    const bool surface_view = view_of_surface(view);
+    define_if(surface_view, "FACET_SURFACE_VIEW");
+    const bool lit_ibl = ibl && !surface_view;
+    define_if(lit_ibl, "USE_IBL");
     define_if(settings.brdf == BrdfModel::thesis, "BRDF_THESIS");
-    define_if(lit && ibl && settings.multiscatter, "MULTISCATTER");
+    define_if(lit_ibl && settings.multiscatter, "MULTISCATTER");
     // A mirror (roughness 0) reads level 0 of the specular cube, which holds the extracted
     // lights (the split level is at least 1 where there are lights): the disks' specular
     // counts for none of its lookup (facet_disk_specular_weight), and its fitted lookups all
@@ -217,7 +220,7 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
     // caps it is three times wider than as points (FACET_DISK_POINTS).
     const bool constant_roughness = !scene.has_texture(material, TextureSlot::metallic_roughness);
     const std::vector<ShaderDefine>* disks = &pass_disks.all;
-    if (lit && ibl && !mirror && !settings.environment_lights.empty() && constant_roughness && disks_at_own_roughness) {
+    if (lit_ibl && !mirror && !settings.environment_lights.empty() && constant_roughness && disks_at_own_roughness) {
         auto found = pass_disks.by_roughness.find(m.roughness);
         if (found == pass_disks.by_roughness.end()) {
             const std::vector<DiskLight> merged = disks_for_lobe(settings.environment_lights, m.roughness);
@@ -245,11 +248,11 @@ Result<const Pipeline*> ForwardRenderer::material_pipeline(const GpuScene& scene
         bend = true;
         two = two && settings.two_lookup_groups[g];
     }
-    const bool fitted = lit && ibl && settings.dominant_direction && bend && !mirror;
+    const bool fitted = lit_ibl && settings.dominant_direction && bend && !mirror;
     define_if(fitted, "DOMINANT_DIRECTION");
     define_if(fitted && two, "FACET_TWO_LOOKUPS");
     define_if(settings.flat_floor, "FLAT_FLOOR");
-    if (lit && !mirror) defines.insert(defines.end(), disks->begin(), disks->end());
+    if (lit_ibl && !mirror) defines.insert(defines.end(), disks->begin(), disks->end());  // none without IBL
     defines.push_back({"VIEW", std::to_string(int(view))});
 
     Pipeline::GraphicsDesc desc;

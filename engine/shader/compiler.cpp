@@ -270,19 +270,7 @@ Result<Spirv> ShaderCompiler::compile_source(ShaderStage stage, std::string_view
             return with_reflection(it->second, key, name);
         }
     }
-    if (!options_.disk_cache_dir.empty()) {
-        const std::string path = disk_path(options_.disk_cache_dir, key);
-        if (auto words = read_disk(path, key)) {
-            // Used now: the cache's bound removes the least recently used entries first.
-            std::error_code ec;
-            std::filesystem::last_write_time(path, std::filesystem::file_time_type::clock::now(), ec);
-            std::lock_guard lock(mutex_);
-            ++stats_.disk_hits;
-            memory_cache_[key] = *words;
-            log(LogLevel::debug, std::string(name) + ": " + stage_name(stage) + " shader read from the shader cache");
-            return with_reflection(std::move(*words), key, name);
-        }
-    }
+    // Then what another compiler of the process made (no file read), then the disk.
     if (options_.share_in_process)
         if (auto words = process_cache_find(key)) {
             std::lock_guard lock(mutex_);
@@ -290,6 +278,20 @@ Result<Spirv> ShaderCompiler::compile_source(ShaderStage stage, std::string_view
             memory_cache_[key] = *words;
             return with_reflection(std::move(*words), key, name);
         }
+    if (!options_.disk_cache_dir.empty()) {
+        const std::string path = disk_path(options_.disk_cache_dir, key);
+        if (auto words = read_disk(path, key)) {
+            // Used now: the cache's bound removes the least recently used entries first.
+            std::error_code ec;
+            std::filesystem::last_write_time(path, std::filesystem::file_time_type::clock::now(), ec);
+            if (options_.share_in_process) process_cache_add(key, *words);
+            std::lock_guard lock(mutex_);
+            ++stats_.disk_hits;
+            memory_cache_[key] = *words;
+            log(LogLevel::debug, std::string(name) + ": " + stage_name(stage) + " shader read from the shader cache");
+            return with_reflection(std::move(*words), key, name);
+        }
+    }
     const auto start = std::chrono::steady_clock::now();
     auto words = glslang_frontend::compile(library_, input);
     if (!words) return words.error();

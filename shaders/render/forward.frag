@@ -251,8 +251,9 @@ Surface surface_at(MaterialData m) {
     return s;
 }
 
-#if VIEW_OF_SURFACE(VIEW)
-// A view of the surface itself (views.glsl): what the material gives, no light.
+#ifdef FACET_SURFACE_VIEW
+// A view of the surface itself (FACET_SURFACE_VIEW: engine/render/views.cpp's view_of_surface
+// decides which): what the material gives, no light.
 vec4 surface_view(Surface surface) {
     FacetSurface s = surface.shading;
 #if VIEW == VIEW_NORMAL
@@ -287,6 +288,8 @@ vec4 surface_view(Surface surface) {
     return vec4(s.sheen_color, s.sheen_roughness);
 #elif VIEW == VIEW_TRANSMISSION
     return vec4(s.transmission, s.transmission_roughness, surface.thickness, 1.0);
+#else
+#error "FACET_SURFACE_VIEW for a view surface_view does not write (engine/render/views.cpp view_of_surface)"
 #endif
 }
 #endif
@@ -314,7 +317,7 @@ void main() {
     out_color = vec4(s.albedo + surface.emissive, surface.alpha);
     return;
 #endif
-#if VIEW_OF_SURFACE(VIEW)
+#ifdef FACET_SURFACE_VIEW
     // Written before any light is looked at: a pipeline of a few thousand words of SPIR-V
     // instead of the lit one's 20000 (lavapipe builds it in ~7 ms instead of ~90).
     out_color = surface_view(surface);
@@ -554,5 +557,5 @@ void main() {
     out_color = vec4(vec3(facet_geometry(s, NdotV, NdotL, view_punctual)), 1.0);
 #endif
 #endif
-#endif  // VIEW_OF_SURFACE
+#endif  // FACET_SURFACE_VIEW
 }

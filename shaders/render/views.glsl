@@ -23,12 +23,4 @@
 #define VIEW_ANISOTROPY 19
 #define VIEW_SHEEN 20
 #define VIEW_TRANSMISSION 21
-// The views of the surface itself (what the material gives at the fragment), not of its light:
-// the forward pass writes them before any light is looked at, so that their pipelines carry
-// none of the lighting (engine/render/forward_pass.cpp gives them none of its defines either).
-#define VIEW_OF_SURFACE(v)                                                                                    \
-    ((v) == VIEW_NORMAL || (v) == VIEW_POSITION || (v) == VIEW_BASECOLOR || (v) == VIEW_METALLIC ||           \
-     (v) == VIEW_ROUGHNESS || (v) == VIEW_OCCLUSION || (v) == VIEW_EMISSIVE || (v) == VIEW_SPECULAR_F0 ||     \
-     (v) == VIEW_CLEARCOAT || (v) == VIEW_CLEARCOAT_NORMAL || (v) == VIEW_IRIDESCENCE ||                      \
-     (v) == VIEW_ANISOTROPY || (v) == VIEW_SHEEN || (v) == VIEW_TRANSMISSION)
 #endif

@@ -35,8 +35,9 @@ enum class View : int {
 
 const char* view_name(View view);
 // Whether the view shows the surface itself (what the material gives at the fragment) rather
-// than its light: normal to transmission but D, F, G and the lobes' radiance (views.glsl's
-// VIEW_OF_SURFACE). Their pipelines carry none of the lighting.
+// than its light: normal to transmission but D, F, G and the lobes' radiance. The forward pass
+// writes those before any light is looked at (FACET_SURFACE_VIEW in render/forward.frag), with
+// none of the lighting in their pipelines.
 bool view_of_surface(View view);
 std::optional<View> parse_view(const std::string& name);
 // "normal,position,..." (every view but the final colour).

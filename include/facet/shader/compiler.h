@@ -44,8 +44,8 @@ struct ShaderCompilerOptions {
     // go too. An entry is about 10-20 KiB; 0: no bound.
     uint64_t disk_cache_max_bytes = 64ull << 20;
     bool debug_info = false;     // keep debug information in the SPIR-V, unoptimised
-    // Share results with every other compiler of the process that shares too (after this
-    // compiler's own memory and disk caches): a host's render sessions, each with its own
+    // Share results with every other compiler of the process that shares too (looked up after
+    // this compiler's own memory, before its disk cache): a host's render sessions, each with its own
     // compiler and no cache directory, compile a shader once per process. At most 32 MiB,
     // emptied when full. Off only where a test counts one compiler's compiles.
     bool share_in_process = true;
